@@ -1,0 +1,34 @@
+#pragma once
+// The broad steps of Garcia-Alonso et al. 1994 for one pair of objects: their containers'
+// world boxes and the overlap region, then the voxels of each object inside that region,
+// then the pairs of polygons from voxels that meet.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "collision/object.h"
+#include "collision/world_faces.h"
+
+namespace polysim::collision {
+
+/// The world box of an object's container at its current pose.
+Eigen::AlignedBox3d worldContainer(const ObjNode& object);
+
+/// The region where two objects could be within eps (m) of each other: the intersection
+/// of their world container boxes, each grown by eps. Empty optional when they cannot.
+std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode& b, double eps);
+
+/// A candidate polygon pair: face `a` of the first object, face `b` of the second.
+struct FacePair {
+  int a, b;
+};
+
+/// Every pair of faces whose world boxes, grown by eps, overlap inside `region`, found by
+/// descending both voxel grids together (see voxel_grid.h), without duplicates and in a
+/// deterministic order. `facesA` and `facesB` must be reset() to a and b.
+void candidatePolygonPairs(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
+                           const Eigen::AlignedBox3d& region, double eps, std::vector<FacePair>& pairs);
+
+}  // namespace polysim::collision

@@ -1,0 +1,188 @@
+#include "collision/contact_reduction.h"
+
+#include <cmath>
+
+#include "collision/clip.h"
+#include "collision/tolerances.h"
+
+namespace polysim::collision {
+namespace {
+
+// Area pieces in one plane, as 2D polygons of that plane's frame.
+struct AreaCluster {
+  PlaneFrame frame;
+  std::vector<Polygon2> pieces;
+  std::vector<double> areas;
+  double separationSum = 0.0, areaSum = 0.0;
+  Feature featureA, featureB;
+};
+
+// Merges pieces whose union is convex: the union of disjoint pieces is their hull exactly
+// when the hull has no more area than the pieces, up to a strip eps wide on its boundary.
+std::vector<Polygon2> mergeConvexUnions(std::vector<Polygon2> pieces, std::vector<double> areas, double eps) {
+  auto tryMerge = [eps](const std::vector<const Polygon2*>& group, double area, Polygon2& hull) {
+    std::vector<Eigen::Vector2d> all;
+    for (const Polygon2* g : group) all.insert(all.end(), g->begin(), g->end());
+    hull = convexHull(std::move(all));
+    return hull.size() >= 3 && signedArea(hull) - area <= eps * perimeter(hull);
+  };
+  Polygon2 hull;
+  std::vector<const Polygon2*> everything;
+  double total = 0.0;
+  for (size_t i = 0; i < pieces.size(); ++i) everything.push_back(&pieces[i]), total += areas[i];
+  if (tryMerge(everything, total, hull)) return {hull};
+  // Not convex as a whole (a face over an L-shaped patch): merge greedily two at a time.
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t i = 0; i < pieces.size() && !merged; ++i)
+      for (size_t j = i + 1; j < pieces.size() && !merged; ++j)
+        if (tryMerge({&pieces[i], &pieces[j]}, areas[i] + areas[j], hull)) {
+          pieces[i] = hull;
+          areas[i] += areas[j];
+          pieces.erase(pieces.begin() + static_cast<long>(j));
+          areas.erase(areas.begin() + static_cast<long>(j));
+          merged = true;
+        }
+  }
+  return pieces;
+}
+
+// Drops corners closer than eps to the previous corner or to the line through their
+// neighbours: clipping leaves near-duplicate and near-collinear corners that say
+// nothing at the contact tolerance.
+Polygon2 simplify(Polygon2 poly, double eps) {
+  for (bool changed = true; changed && poly.size() > 3;) {
+    changed = false;
+    for (size_t i = 0; i < poly.size() && poly.size() > 3; ++i) {
+      const Eigen::Vector2d& prev = poly[(i + poly.size() - 1) % poly.size()];
+      const Eigen::Vector2d& next = poly[(i + 1) % poly.size()];
+      const Eigen::Vector2d chord = next - prev;
+      const double offChord = chord.norm() > 0 ? std::abs(cross2(chord, poly[i] - prev)) / chord.norm() : 0.0;
+      if ((poly[i] - prev).norm() <= eps || offChord <= eps) {
+        poly.erase(poly.begin() + static_cast<long>(i));
+        changed = true;
+      }
+    }
+  }
+  return poly;
+}
+
+struct AreaPolygon {
+  PlaneFrame frame;
+  Polygon2 polygon;
+};
+
+bool onArea(const Eigen::Vector3d& x, const std::vector<AreaPolygon>& areas, double eps) {
+  for (const AreaPolygon& a : areas)
+    if (std::abs(a.frame.normal.dot(x - a.frame.origin)) <= eps && distanceToConvex(a.polygon, a.frame.to2d(x)) <= eps)
+      return true;
+  return false;
+}
+
+double distanceToSegment(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double t = d.squaredNorm() > 0 ? std::clamp(d.dot(x - a) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (a + t * d - x).norm();
+}
+
+// Joins line b into line a when they are collinear within eps and overlap or touch.
+bool joinCollinear(Contact& a, const Contact& b, double eps) {
+  const Eigen::Vector3d origin = a.points[0], dir = (a.points[1] - a.points[0]).normalized();
+  auto offLine = [&](const Eigen::Vector3d& x) { return (x - origin - dir.dot(x - origin) * dir).norm(); };
+  if (offLine(b.points[0]) > eps || offLine(b.points[1]) > eps) return false;
+  const double a0 = 0.0, a1 = dir.dot(a.points[1] - origin);
+  const double b0 = dir.dot(b.points[0] - origin), b1 = dir.dot(b.points[1] - origin);
+  const double lo = std::min(b0, b1), hi = std::max(b0, b1);
+  if (lo > a1 + eps || hi < a0 - eps) return false;
+  const double newLo = std::min(a0, lo), newHi = std::max(a1, hi);
+  a.points = {origin + newLo * dir, origin + newHi * dir};
+  return true;
+}
+
+}  // namespace
+
+std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps) {
+  std::vector<AreaCluster> clusters;
+  std::vector<Contact> lines, points, out;
+  for (const Contact& c : raw) {
+    if (c.type == ContactType::Line) lines.push_back(c);
+    if (c.type == ContactType::Point) points.push_back(c);
+    if (c.type != ContactType::Area) continue;
+    AreaCluster* home = nullptr;
+    for (AreaCluster& k : clusters)
+      if (k.frame.normal.dot(c.normal) >= std::cos(kFlatEdgeAngle) &&
+          std::abs(k.frame.normal.dot(c.points[0] - k.frame.origin)) <= eps)
+        home = &k;
+    if (!home) {
+      clusters.push_back({PlaneFrame(c.points[0], c.normal), {}, {}, 0.0, 0.0, c.featureA, c.featureB});
+      home = &clusters.back();
+    }
+    Polygon2 poly;
+    for (const Eigen::Vector3d& x : c.points) poly.push_back(home->frame.to2d(x));
+    const double area = signedArea(poly);
+    home->pieces.push_back(std::move(poly));
+    home->areas.push_back(area);
+    home->areaSum += area;
+    home->separationSum += area * c.separation;
+  }
+
+  std::vector<AreaPolygon> areas;
+  for (AreaCluster& k : clusters) {
+    for (Polygon2& merged : mergeConvexUnions(k.pieces, k.areas, eps)) {
+      Polygon2 poly = simplify(std::move(merged), eps);
+      Contact c;
+      c.type = ContactType::Area;
+      c.normal = k.frame.normal;
+      c.separation = k.separationSum / k.areaSum;
+      c.featureA = k.featureA;
+      c.featureB = k.featureB;
+      for (const Eigen::Vector2d& x : poly) c.points.push_back(k.frame.to3d(x));
+      out.push_back(std::move(c));
+      areas.push_back({k.frame, std::move(poly)});
+    }
+  }
+
+  // The same segment found from several feature pairs (an edge along a face, the face's
+  // edge along the other's face, the two edges) is one contact: join collinear pieces and
+  // give the joined line the direction of the sum of their normals.
+  std::vector<Contact> keptLines;
+  std::vector<Eigen::Vector3d> lineNormals;
+  for (const Contact& line : lines) {
+    if (onArea(line.points[0], areas, eps) && onArea(line.points[1], areas, eps)) continue;
+    bool joined = false;
+    for (size_t k = 0; k < keptLines.size() && !joined; ++k)
+      if (joinCollinear(keptLines[k], line, eps)) joined = true, lineNormals[k] += line.normal;
+    if (!joined) keptLines.push_back(line), lineNormals.push_back(line.normal);
+  }
+  for (bool changed = true; changed;) {  // joining can make two kept lines overlap
+    changed = false;
+    for (size_t i = 0; i < keptLines.size() && !changed; ++i)
+      for (size_t j = i + 1; j < keptLines.size() && !changed; ++j)
+        if (joinCollinear(keptLines[i], keptLines[j], eps)) {
+          lineNormals[i] += lineNormals[j];
+          keptLines.erase(keptLines.begin() + static_cast<long>(j));
+          lineNormals.erase(lineNormals.begin() + static_cast<long>(j));
+          changed = true;
+        }
+  }
+  for (size_t k = 0; k < keptLines.size(); ++k)
+    if (lineNormals[k].norm() > kParallelSine) keptLines[k].normal = lineNormals[k].normalized();
+
+  std::vector<Contact> keptPoints;
+  std::vector<Eigen::Vector3d> pointNormals;
+  for (const Contact& point : points) {
+    const Eigen::Vector3d& x = point.points[0];
+    bool covered = onArea(x, areas, eps);
+    for (const Contact& l : keptLines) covered = covered || distanceToSegment(x, l.points[0], l.points[1]) <= eps;
+    for (size_t k = 0; k < keptPoints.size() && !covered; ++k)
+      if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointNormals[k] += point.normal;
+    if (!covered) keptPoints.push_back(point), pointNormals.push_back(point.normal);
+  }
+  for (size_t k = 0; k < keptPoints.size(); ++k)
+    if (pointNormals[k].norm() > kParallelSine) keptPoints[k].normal = pointNormals[k].normalized();
+  out.insert(out.end(), keptLines.begin(), keptLines.end());
+  out.insert(out.end(), keptPoints.begin(), keptPoints.end());
+  return out;
+}
+
+}  // namespace polysim::collision

@@ -1,0 +1,69 @@
+#include "collision/intersection.h"
+
+#include <algorithm>
+
+#include "collision/contact_reduction.h"
+
+namespace polysim::collision {
+
+PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWorkspace& ws,
+                          const IntersectionOptions& options, long* polygonPairsTested) {
+  PairResult result;
+  result.a = a;
+  result.b = b;
+  const ObjNode& A = db.objects[a];
+  const ObjNode& B = db.objects[b];
+  const double eps = db.tolerance;
+  const std::optional<Eigen::AlignedBox3d> region = overlapRegion(A, B, eps);
+  if (!region) return result;
+
+  if (ws.faces.size() < db.objects.size()) ws.faces.resize(db.objects.size());
+  WorldFaces& facesA = ws.faces[a];
+  WorldFaces& facesB = ws.faces[b];
+  facesA.reset(A);
+  facesB.reset(B);
+  candidatePolygonPairs(A, facesA, B, facesB, *region, eps, ws.candidates);
+  if (polygonPairsTested) *polygonPairsTested += static_cast<long>(ws.candidates.size());
+
+  ws.raw.clear();
+  bool touching = false;
+  for (const FacePair& fp : ws.candidates) {
+    const PolygonPairOutcome o = testPolygonPair(facesA.view(fp.a), facesB.view(fp.b), eps,
+                                                 options.contacts ? &ws.raw : nullptr, ws.scratch);
+    if (o.status == Status::Interpenetrating) {
+      result.status = Status::Interpenetrating;
+      result.depth = std::max(result.depth, o.depth);
+      if (options.stopAtInterpenetration) break;
+    }
+    touching = touching || o.status == Status::Contact;
+  }
+  if (result.status == Status::Interpenetrating) return result;
+  if (touching) {
+    result.status = Status::Contact;
+    if (options.contacts) result.contacts = reduceContacts(ws.raw, eps);
+  }
+  return result;
+}
+
+IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& ws,
+                                     const IntersectionOptions& options) {
+  IntersectionResult result;
+  const int n = static_cast<int>(db.objects.size());
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      if (db.objects[a].isStatic && db.objects[b].isStatic) continue;
+      PairResult pair = testObjectPair(db, a, b, ws, options, &result.polygonPairsTested);
+      if (pair.status == Status::Separate) continue;
+      result.status = std::max(result.status, pair.status);
+      result.pairs.push_back(std::move(pair));
+      if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) return result;
+    }
+  return result;
+}
+
+IntersectionResult test4Intersection(const ObjectDatabase& db, const IntersectionOptions& options) {
+  IntersectionWorkspace ws;
+  return test4Intersection(db, ws, options);
+}
+
+}  // namespace polysim::collision

@@ -1,0 +1,50 @@
+#pragma once
+// test4Intersection(): the seed's static test of the object database.
+
+#include <vector>
+
+#include "collision/broadphase.h"
+#include "collision/contact.h"
+#include "collision/object.h"
+#include "collision/polygon_tests.h"
+
+namespace polysim::collision {
+
+struct IntersectionOptions {
+  /// Gather the contact geometry of pairs in contact (points, lines, areas).
+  bool contacts = true;
+  /// Return as soon as one pair interpenetrates (its depth is then a lower bound), for
+  /// callers that only need the verdict, such as collisionDetect()'s bisection.
+  bool stopAtInterpenetration = false;
+};
+
+struct IntersectionResult {
+  /// The worst status over all pairs.
+  Status status = Status::Separate;
+  /// Every pair that is not separate, in order of (a, b).
+  std::vector<PairResult> pairs;
+  /// Polygon pairs that reached the polygon-level test: the work the broad steps left.
+  long polygonPairsTested = 0;
+};
+
+/// Reusable scratch memory of the test (per-object world faces, candidate lists), so that
+/// repeated queries do not allocate. One workspace serves one thread.
+struct IntersectionWorkspace {
+  std::vector<WorldFaces> faces;
+  std::vector<FacePair> candidates;
+  std::vector<Contact> raw;
+  PolygonScratch scratch;
+};
+
+/// Tests every pair of objects of the database at their current transforms (static pairs
+/// excepted) with the database's tolerance: separate, contact (within tolerance; touching
+/// counts) or interpenetrating (a feature more than the tolerance inside the other).
+IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& workspace,
+                                     const IntersectionOptions& options = {});
+IntersectionResult test4Intersection(const ObjectDatabase& db, const IntersectionOptions& options = {});
+
+/// The same test for objects a and b of the database only.
+PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWorkspace& workspace,
+                          const IntersectionOptions& options, long* polygonPairsTested = nullptr);
+
+}  // namespace polysim::collision

@@ -1,0 +1,81 @@
+#pragma once
+// A polygonal object's shape: vertices in the object's own frame and planar convex
+// faces of any vertex count. The object need not be convex, nor closed.
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace polysim::collision {
+
+/// The plane {x : normal . x = offset}; normal is unit length and points out of the
+/// object. signedDistance is positive outside, in metres.
+struct Plane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double offset = 0.0;
+  double signedDistance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset; }
+};
+
+/// An undirected edge between two vertices and the (one or two) faces that share it.
+/// face1 is -1 on the boundary of an open mesh.
+struct MeshEdge {
+  int v0 = 0, v1 = 0;
+  int face0 = -1, face1 = -1;
+};
+
+/// The raw description of a mesh as a scene gives it: vertex positions (m, object frame)
+/// and faces as counter-clockwise vertex index lists seen from outside.
+struct MeshData {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::vector<int>> faces;
+};
+
+/// Every problem with `data` as a polygon mesh, one readable sentence each ("face 3 is
+/// not planar (vertex 7 is 0.02 off its plane)"); empty when the mesh is valid. With
+/// `mustBeClosed`, a mesh whose edges are not each shared by exactly two faces with
+/// opposite directions is rejected too (a dynamic body needs a closed surface).
+std::vector<std::string> validateMesh(const MeshData& data, bool mustBeClosed);
+
+/// An immutable, validated polygon mesh with its derived data: face planes, unique
+/// edges, each face's edges, and the bounding box of its vertices (object frame).
+class PolygonMesh {
+ public:
+  /// Builds from data that validateMesh accepted; throws std::invalid_argument otherwise.
+  explicit PolygonMesh(MeshData data);
+
+  const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
+  int faceCount() const { return static_cast<int>(faceStart_.size()) - 1; }
+  /// The vertex indices of face f, counter-clockwise seen from outside.
+  const int* faceVertices(int f) const { return faceIndices_.data() + faceStart_[f]; }
+  int faceSize(int f) const { return faceStart_[f + 1] - faceStart_[f]; }
+  /// The mesh edge running from vertex i to vertex i+1 of face f.
+  int faceEdge(int f, int i) const { return faceEdges_[faceStart_[f] + i]; }
+  const Plane& facePlane(int f) const { return planes_[f]; }
+  const Eigen::AlignedBox3d& faceBounds(int f) const { return faceBounds_[f]; }
+  const std::vector<MeshEdge>& edges() const { return edges_; }
+  /// Unit direction pointing out of the object at edge e: the normalized sum of the
+  /// normals of its faces (the face normal for a boundary edge).
+  const Eigen::Vector3d& edgeOutward(int e) const { return edgeOutward_[e]; }
+  /// True when edge e joins two faces in the same plane (within kFlatEdgeAngle): an
+  /// internal edge of a flat patch, not a crease or boundary of the surface.
+  bool edgeIsFlat(int e) const { return edgeFlat_[e] != 0; }
+  const Eigen::AlignedBox3d& bounds() const { return bounds_; }
+  bool closed() const { return closed_; }
+  /// The faces as index lists (for mass properties and output).
+  std::vector<std::vector<int>> faceLists() const;
+
+ private:
+  std::vector<Eigen::Vector3d> vertices_;
+  std::vector<int> faceStart_;    // CSR offsets into faceIndices_, size faceCount()+1
+  std::vector<int> faceIndices_;
+  std::vector<int> faceEdges_;    // parallel to faceIndices_
+  std::vector<Plane> planes_;
+  std::vector<Eigen::AlignedBox3d> faceBounds_;
+  std::vector<MeshEdge> edges_;
+  std::vector<Eigen::Vector3d> edgeOutward_;
+  std::vector<char> edgeFlat_;
+  Eigen::AlignedBox3d bounds_;
+  bool closed_ = false;
+};
+
+}  // namespace polysim::collision

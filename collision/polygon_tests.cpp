@@ -1,0 +1,262 @@
+#include "collision/polygon_tests.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "collision/segment_distance.h"
+#include "collision/tolerances.h"
+
+namespace polysim::collision {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+void signedDistances(const PolygonView& p, const Plane& plane, std::vector<double>& d) {
+  d.resize(p.size);
+  for (int i = 0; i < p.size; ++i) d[i] = plane.signedDistance(p.vertices[i]);
+}
+
+// The part of p at signed level h of a plane, given p's vertex levels d: a segment [a, b]
+// for a convex polygon (a == b when it is one point). False when p misses the level.
+bool cutAtLevel(const PolygonView& p, const double* d, double h, Eigen::Vector3d& a, Eigen::Vector3d& b) {
+  int found = 0;
+  auto add = [&](const Eigen::Vector3d& x) {
+    if (found == 0) a = b = x;
+    else if ((x - a).squaredNorm() > (b - a).squaredNorm()) b = x;  // keep the two farthest apart
+    else if ((x - b).squaredNorm() > (b - a).squaredNorm()) a = x;
+    ++found;
+  };
+  for (int i = 0; i < p.size; ++i) {
+    const int j = (i + 1) % p.size;
+    const double di = d[i] - h, dj = d[j] - h;
+    if (di == 0.0) add(p.vertices[i]);
+    else if ((di < 0) != (dj < 0) && dj != 0.0) add(p.vertices[i] + (di / (di - dj)) * (p.vertices[j] - p.vertices[i]));
+  }
+  return found > 0;
+}
+
+// Keeps the part of polygon `in` with normal . x <= offset (3D Sutherland-Hodgman step).
+void clipBelow(const std::vector<Eigen::Vector3d>& in, const Eigen::Vector3d& normal, double offset,
+               std::vector<Eigen::Vector3d>& out) {
+  out.clear();
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Eigen::Vector3d& x = in[i];
+    const Eigen::Vector3d& y = in[(i + 1) % in.size()];
+    const double sx = normal.dot(x) - offset, sy = normal.dot(y) - offset;
+    if (sx <= 0) out.push_back(x);
+    if ((sx <= 0) != (sy <= 0)) out.push_back(x + (sx / (sx - sy)) * (y - x));
+  }
+}
+
+// The largest over t in [0,1] of min_k f_k(t), f_k(t) = a_k + b_k t: the deepest point of
+// a segment inside a convex region bounded by lines. min of lines is concave, so the
+// maximum sits at an end or where two lines cross.
+double maxOfMinOfLines(const std::vector<std::pair<double, double>>& lines) {
+  if (lines.empty()) return kInfinity;
+  auto g = [&](double t) {
+    double m = kInfinity;
+    for (const auto& [a, b] : lines) m = std::min(m, a + b * t);
+    return m;
+  };
+  double best = std::max(g(0.0), g(1.0));
+  for (size_t i = 0; i < lines.size(); ++i)
+    for (size_t j = i + 1; j < lines.size(); ++j) {
+      const double db = lines[i].second - lines[j].second;
+      if (db == 0.0) continue;
+      const double t = (lines[j].first - lines[i].first) / db;
+      if (t > 0.0 && t < 1.0) best = std::max(best, g(t));
+    }
+  return best;
+}
+
+// How far (m) polygon p goes inside q's object, judged from q alone: the smaller of the
+// depth of p behind q's plane within q's prism (grown by eps) and the depth of p's cut
+// through q's plane inside q, measured from q's edges that are not flat.
+double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, double eps, PolygonScratch& s) {
+  const double maxP = *std::max_element(dP, dP + p.size);
+  Eigen::Vector3d c0, c1;
+  if (!cutAtLevel(p, dP, std::min(0.0, maxP), c0, c1)) return 0.0;
+
+  const PlaneFrame frame(q.vertices[0], q.plane.normal);
+  s.q2.resize(q.size);
+  for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
+  Eigen::Vector2d a = frame.to2d(c0), b = frame.to2d(c1);
+  if (!clipSegment(s.q2, eps, a, b)) return 0.0;
+
+  std::vector<std::pair<double, double>> lines;  // inside distance along the cut, per sharp edge
+  for (int k = 0; k < q.size; ++k) {
+    if (q.edgeFlat[k]) continue;
+    const Eigen::Vector2d e = s.q2[(k + 1) % q.size] - s.q2[k];
+    const double len = e.norm();
+    const double fa = cross2(e, a - s.q2[k]) / len;
+    lines.emplace_back(fa, cross2(e, b - s.q2[k]) / len - fa);
+  }
+  const double cutDepth = maxOfMinOfLines(lines);
+  if (cutDepth <= eps) return cutDepth;
+
+  // p clipped to the region behind q and inside q's prism.
+  s.clipA.assign(p.vertices, p.vertices + p.size);
+  clipBelow(s.clipA, q.plane.normal, q.plane.offset, s.clipB);
+  for (int k = 0; k < q.size && !s.clipB.empty(); ++k) {
+    const Eigen::Vector3d& u = q.vertices[k];
+    const Eigen::Vector3d outward = (q.vertices[(k + 1) % q.size] - u).cross(q.plane.normal).normalized();
+    s.clipA.swap(s.clipB);
+    clipBelow(s.clipA, outward, outward.dot(u) + eps, s.clipB);
+  }
+  double behind = 0.0;
+  for (const Eigen::Vector3d& x : s.clipB) behind = std::max(behind, -q.plane.signedDistance(x));
+  return std::min(cutDepth, behind);
+}
+
+Contact makeContact(ContactType type, const Eigen::Vector3d& normal, double separation, Feature a, Feature b) {
+  Contact c;
+  c.type = type;
+  c.normal = normal;
+  c.separation = separation;
+  c.featureA = a;
+  c.featureB = b;
+  return c;
+}
+
+// Face-on-face: both polygons lie within eps of each other's plane, facing each other.
+// Appends the overlap polygon and returns true when it has a real area (wider than eps).
+bool areaContact(const PolygonView& p, const double* dP, const PolygonView& q, double eps,
+                 std::vector<Contact>& out, PolygonScratch& s) {
+  const PlaneFrame frame(q.vertices[0], q.plane.normal);
+  s.q2.resize(q.size);
+  for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
+  s.p2.resize(p.size);
+  for (int k = 0; k < p.size; ++k) s.p2[p.size - 1 - k] = frame.to2d(p.vertices[k]);  // reversed: CCW about q's normal
+  const Polygon2 overlap = clipConvex(s.q2, s.p2);
+  if (overlap.size() < 3 || signedArea(overlap) <= 0.5 * eps * perimeter(overlap)) return false;
+  double gap = 0.0;
+  for (int i = 0; i < p.size; ++i) gap += dP[i];
+  gap /= p.size;
+  Contact c = makeContact(ContactType::Area, q.plane.normal, gap, {Feature::Kind::Face, p.faceId},
+                          {Feature::Kind::Face, q.faceId});
+  for (const Eigen::Vector2d& x : overlap) c.points.push_back(frame.to3d(x) + (0.5 * gap) * q.plane.normal);
+  out.push_back(std::move(c));
+  return true;
+}
+
+// Edges and vertices of `p` lying within eps of face `q` (lines and points), with the
+// normal `normal` (from B towards A). `pIsA` tells which object p belongs to.
+void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q, double eps, bool pIsA,
+                    std::vector<Contact>& out, PolygonScratch& s) {
+  const PlaneFrame frame(q.vertices[0], q.plane.normal);
+  s.q2.resize(q.size);
+  for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
+  const Eigen::Vector3d normal = pIsA ? q.plane.normal : Eigen::Vector3d(-q.plane.normal);
+  auto features = [&](Feature onP) {
+    Feature onQ{Feature::Kind::Face, q.faceId};
+    return pIsA ? std::make_pair(onP, onQ) : std::make_pair(onQ, onP);
+  };
+  for (int i = 0; i < p.size; ++i) {
+    const int j = (i + 1) % p.size;
+    if (std::abs(dP[i]) > eps) continue;
+    if (std::abs(dP[j]) <= eps) {  // edge i lies along q's plane
+      // Within eps of q decides contact; the reported segment is the part over q itself
+      // (the grown clip would add eps-long stubs at q's corners).
+      Eigen::Vector2d a = frame.to2d(p.vertices[i]), b = frame.to2d(p.vertices[j]);
+      Eigen::Vector2d a0 = a, b0 = b;
+      if (clipSegment(s.q2, eps, a, b)) {
+        const bool isLine = clipSegment(s.q2, 0.0, a0, b0) && (b0 - a0).norm() > eps;
+        if (isLine) a = a0, b = b0;
+        const double gap = 0.5 * (dP[i] + dP[j]);
+        const Eigen::Vector3d shift = (0.5 * gap) * q.plane.normal;
+        const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
+        Contact c = makeContact(isLine ? ContactType::Line : ContactType::Point, normal, gap, fa, fb);
+        if (isLine) c.points = {frame.to3d(a) + shift, frame.to3d(b) + shift};
+        else c.points = {frame.to3d(0.5 * (a + b)) + shift};
+        out.push_back(std::move(c));
+      }
+    }
+    if (distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {
+      const auto [fa, fb] = features({Feature::Kind::Vertex, p.vertexIds[i]});
+      Contact c = makeContact(ContactType::Point, normal, dP[i], fa, fb);
+      c.points = {p.vertices[i] - (0.5 * dP[i]) * q.plane.normal};
+      out.push_back(std::move(c));
+    }
+  }
+}
+
+// Edge of p against edge of q: crossing edges give a point, overlapping parallel edges a
+// line. Edges that stay more than eps to one side of the other face's plane are skipped.
+void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView& q, const double* dQ, double eps,
+                      std::vector<Contact>& out) {
+  auto farFromPlane = [eps](double d0, double d1) { return (d0 > eps && d1 > eps) || (d0 < -eps && d1 < -eps); };
+  for (int i = 0; i < p.size; ++i) {
+    const int i1 = (i + 1) % p.size;
+    if (farFromPlane(dP[i], dP[i1])) continue;
+    const Eigen::Vector3d& p0 = p.vertices[i];
+    const Eigen::Vector3d u = p.vertices[i1] - p0;
+    for (int j = 0; j < q.size; ++j) {
+      const int j1 = (j + 1) % q.size;
+      if (farFromPlane(dQ[j], dQ[j1])) continue;
+      const Eigen::Vector3d& q0 = q.vertices[j];
+      const Eigen::Vector3d v = q.vertices[j1] - q0;
+      const SegmentClosestPoints cp = closestPointsOnSegments(p0, u, q0, v);
+      if (cp.distance > eps) continue;
+      const Eigen::Vector3d outward = q.edgeOutward[j] - p.edgeOutward[i];
+      const Feature fa{Feature::Kind::Edge, p.edgeIds[i]}, fb{Feature::Kind::Edge, q.edgeIds[j]};
+      const Eigen::Vector3d axis = u.cross(v);
+      if (axis.norm() > kParallelSine * u.norm() * v.norm()) {
+        const Eigen::Vector3d n = axis.dot(outward) >= 0 ? axis.normalized() : Eigen::Vector3d(-axis.normalized());
+        Contact c = makeContact(ContactType::Point, n, n.dot(cp.onFirst - cp.onSecond), fa, fb);
+        c.points = {0.5 * (cp.onFirst + cp.onSecond)};
+        out.push_back(std::move(c));
+        continue;
+      }
+      // Parallel: the overlap of q's edge projected on p's edge.
+      const double s0 = u.dot(q0 - p0) / u.squaredNorm(), s1 = u.dot(q0 + v - p0) / u.squaredNorm();
+      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
+      Eigen::Vector3d n = outward - outward.dot(u) / u.squaredNorm() * u;
+      n = n.norm() > kParallelSine ? n.normalized() : q.plane.normal;
+      const Eigen::Vector3d shift = -0.5 * n.dot(cp.onFirst - cp.onSecond) * n;  // onto the midline
+      const double gap = n.dot(cp.onFirst - cp.onSecond);
+      if ((hi - lo) * u.norm() > eps) {
+        Contact c = makeContact(ContactType::Line, n, gap, fa, fb);
+        c.points = {p0 + lo * u + shift, p0 + hi * u + shift};
+        out.push_back(std::move(c));
+      } else {
+        Contact c = makeContact(ContactType::Point, n, gap, fa, fb);
+        c.points = {0.5 * (cp.onFirst + cp.onSecond)};
+        out.push_back(std::move(c));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
+                                   std::vector<Contact>* contacts, PolygonScratch& s) {
+  signedDistances(p, q.plane, s.dP);
+  signedDistances(q, p.plane, s.dQ);
+  const auto [minP, maxP] = std::minmax_element(s.dP.begin(), s.dP.end());
+  const auto [minQ, maxQ] = std::minmax_element(s.dQ.begin(), s.dQ.end());
+  // A polygon wholly beyond the band on one side of the other's plane cannot come within
+  // eps of it; whether it lies inside the other object is for other polygon pairs to see.
+  if (*minP > eps || *maxP < -eps || *minQ > eps || *maxQ < -eps) return {};
+
+  double depth = 0.0;
+  if (*minP < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));
+  if (*minQ < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
+  if (depth > eps) return {Status::Interpenetrating, depth};
+
+  std::vector<Contact> discard;
+  std::vector<Contact>& out = contacts ? *contacts : discard;
+  const size_t before = out.size();
+  const bool coplanar = *minP >= -eps && *maxP <= eps && *minQ >= -eps && *maxQ <= eps;
+  if (!(coplanar && p.plane.normal.dot(q.plane.normal) < 0 && areaContact(p, s.dP.data(), q, eps, out, s))) {
+    featuresOnFace(p, s.dP.data(), q, eps, true, out, s);
+    featuresOnFace(q, s.dQ.data(), p, eps, false, out, s);
+    edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out);
+  }
+  const bool touching = out.size() > before;
+  if (!contacts) discard.clear();
+  return {touching ? Status::Contact : Status::Separate, 0.0};
+}
+
+}  // namespace polysim::collision

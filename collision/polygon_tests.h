@@ -1,0 +1,51 @@
+#pragma once
+// The polygon-level test of the intersection module: one convex polygon of object A
+// against one of object B, both in the world frame, judged with the contact tolerance.
+
+#include <vector>
+
+#include "collision/clip.h"
+#include "collision/contact.h"
+#include "collision/polygon_mesh.h"
+
+namespace polysim::collision {
+
+/// One face of an object placed in the world frame, with the ids of its features.
+struct PolygonView {
+  const Eigen::Vector3d* vertices = nullptr;     // world, counter-clockwise about plane.normal
+  const Eigen::Vector3d* edgeOutward = nullptr;  // world; edge i runs from vertex i to i+1
+  const int* vertexIds = nullptr;                // mesh vertex of each corner
+  const int* edgeIds = nullptr;                  // mesh edge of each side
+  const char* edgeFlat = nullptr;                // side i is a flat internal edge (no boundary)
+  int size = 0;
+  Plane plane;                                   // world, normal out of the object
+  int faceId = -1;
+};
+
+/// Scratch buffers reused between calls, so that the hot loop does not allocate.
+struct PolygonScratch {
+  std::vector<double> dP, dQ;
+  std::vector<Eigen::Vector3d> clipA, clipB;
+  Polygon2 p2, q2;
+};
+
+/// The verdict for one polygon pair.
+struct PolygonPairOutcome {
+  Status status = Status::Separate;
+  /// For Interpenetrating, how far (m) one polygon goes inside the other's object.
+  double depth = 0.0;
+};
+
+/// Tests polygon p (of object A) against q (of object B) with contact tolerance eps (m).
+///
+/// Interpenetrating: p reaches more than eps behind q, measured as the smaller of (1) how
+/// far p goes behind q's plane inside q's prism and (2) how far p's cut through q's plane
+/// lies inside q, from q's boundary edges that are not flat (and the same for q into p).
+/// Contact: not interpenetrating, and some feature pair is within eps. Touching counts
+/// as contact. When `contacts` is non-null and the pair is in contact, its contacts
+/// (area, lines, points; normal from B towards A) are appended, possibly with
+/// duplicates that the caller merges (see contact_reduction.h).
+PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
+                                   std::vector<Contact>* contacts, PolygonScratch& scratch);
+
+}  // namespace polysim::collision

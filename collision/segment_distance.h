@@ -1,0 +1,18 @@
+#pragma once
+// Closest points between two line segments (Ericson, Real-Time Collision Detection, 5.1.9).
+
+#include <Eigen/Core>
+
+namespace polysim::collision {
+
+struct SegmentClosestPoints {
+  Eigen::Vector3d onFirst, onSecond;
+  double distance = 0.0;  // m
+};
+
+/// The closest points of segments p0 + s u and q0 + t v, s and t in [0, 1]. Parallel
+/// segments give one of the closest pairs. Zero-length segments are allowed.
+SegmentClosestPoints closestPointsOnSegments(const Eigen::Vector3d& p0, const Eigen::Vector3d& u,
+                                             const Eigen::Vector3d& q0, const Eigen::Vector3d& v);
+
+}  // namespace polysim::collision

@@ -1,0 +1,201 @@
+// test4Intersection() on hand-derived cases, each under several world frames and with
+// the two objects swapped (same contacts, flipped normals).
+
+#include "collision/intersection.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "collision/shapes.h"
+#include "collision/tolerances.h"
+#include "tests/test_support.h"
+
+namespace polysim::collision {
+namespace {
+
+using test::pose;
+using test::rot;
+using V3 = Eigen::Vector3d;
+
+constexpr double kEps = kDefaultContactTolerance;
+
+struct ExpectedContact {
+  ContactType type;
+  V3 normal;       // from B towards A
+  double measure;  // area (m^2) of an area, length (m) of a line, 0 for a point
+  V3 centroid;     // mean of the contact's points
+};
+
+struct Case {
+  std::string name;
+  MeshData meshA, meshB;
+  Eigen::Isometry3d X_A, X_B;
+  bool bStatic;
+  Status status;
+  std::vector<ExpectedContact> contacts;
+};
+
+double measure(const Contact& c) {
+  if (c.type == ContactType::Line) return (c.points[1] - c.points[0]).norm();
+  if (c.type == ContactType::Point) return 0.0;
+  V3 twice = V3::Zero();
+  for (size_t i = 0; i < c.points.size(); ++i) twice += c.points[i].cross(c.points[(i + 1) % c.points.size()]);
+  return 0.5 * twice.dot(c.normal);  // positive when counter-clockwise about the normal
+}
+
+V3 centroid(const Contact& c) {
+  V3 sum = V3::Zero();
+  for (const V3& p : c.points) sum += p;
+  return sum / static_cast<double>(c.points.size());
+}
+
+const MeshData kUnitBox = makeBox(V3(1, 1, 1));
+const MeshData kFloorBox = makeBox(V3(10, 10, 1));
+const Eigen::Isometry3d kFloorPose = pose(V3(0, 0, -0.5));
+const double kOctagonArea = 2 * (std::sqrt(2.0) - 1);
+
+// The rotation that turns the box's (1,1,1) corner straight down.
+Eigen::Matrix3d cornerDown() {
+  return Eigen::Quaterniond::FromTwoVectors(V3(1, 1, 1).normalized(), V3(0, 0, -1)).toRotationMatrix();
+}
+
+std::vector<Case> cases() {
+  const double r2 = std::sqrt(2.0);
+  return {
+      {"face_on_face", kUnitBox, kUnitBox, pose(V3(0, 0, 1)), pose(V3::Zero()), false, Status::Contact,
+       {{ContactType::Area, V3(0, 0, 1), 1.0, V3(0, 0, 0.5)}}},
+      {"turned_45_octagon", kUnitBox, kUnitBox, pose(V3(0, 0, 1), rot(M_PI / 4, V3::UnitZ())), pose(V3::Zero()), false,
+       Status::Contact, {{ContactType::Area, V3(0, 0, 1), kOctagonArea, V3(0, 0, 0.5)}}},
+      {"box_on_edge", kUnitBox, kFloorBox, pose(V3(0, 0, r2 / 2), rot(M_PI / 4, V3::UnitX())), kFloorPose, true,
+       Status::Contact, {{ContactType::Line, V3(0, 0, 1), 1.0, V3(0, 0, 0)}}},
+      {"box_on_vertex", kUnitBox, kFloorBox, pose(V3(0, 0, std::sqrt(3.0) / 2), cornerDown()), kFloorPose, true,
+       Status::Contact, {{ContactType::Point, V3(0, 0, 1), 0.0, V3(0, 0, 0)}}},
+      {"edges_crossing", kUnitBox, kUnitBox, pose(V3(0, 0, r2), rot(M_PI / 4, V3::UnitX())),
+       pose(V3::Zero(), rot(M_PI / 4, V3::UnitY())), false, Status::Contact,
+       {{ContactType::Point, V3(0, 0, 1), 0.0, V3(0, 0, r2 / 2)}}},
+      {"gap_half_tolerance", kUnitBox, kUnitBox, pose(V3(0, 0, 1 + kEps / 2)), pose(V3::Zero()), false,
+       Status::Contact, {{ContactType::Area, V3(0, 0, 1), 1.0, V3(0, 0, 0.5 + kEps / 4)}}},
+      {"ten_tolerances_apart", kUnitBox, kUnitBox, pose(V3(0, 0, 1 + 10 * kEps)), pose(V3::Zero()), false,
+       Status::Separate, {}},
+      {"ten_tolerances_deep", kUnitBox, kUnitBox, pose(V3(0, 0, 1 - 10 * kEps)), pose(V3::Zero()), false,
+       Status::Interpenetrating, {}},
+      {"staple_two_feet", test::makeStaple(), kFloorBox, pose(V3(-1.5, -0.5, 0)), kFloorPose, true, Status::Contact,
+       {{ContactType::Area, V3(0, 0, 1), 1.0, V3(-1, 0, 0)}, {ContactType::Area, V3(0, 0, 1), 1.0, V3(1, 0, 0)}}},
+      {"hexagon_face", test::makeHexPrism(1.0, 1.0), kFloorBox, pose(V3(0, 0, 0.5)), kFloorPose, true,
+       Status::Contact, {{ContactType::Area, V3(0, 0, 1), 1.5 * std::sqrt(3.0), V3(0, 0, 0)}}},
+      // A triangulated floor whose grid lines run along the box's sides: one square.
+      {"box_on_triangulated_floor", kUnitBox, makeTriangulatedFloor(10, 10, 10), pose(V3(0, 0, 0.5)),
+       pose(V3::Zero()), true, Status::Contact, {{ContactType::Area, V3(0, 0, 1), 1.0, V3(0, 0, 0)}}},
+      {"edge_along_triangle_edges", kUnitBox, makeTriangulatedFloor(10, 10, 10),
+       pose(V3(0.5, 0, r2 / 2), rot(M_PI / 4, V3::UnitX())), pose(V3::Zero()), true, Status::Contact,
+       {{ContactType::Line, V3(0, 0, 1), 1.0, V3(0.5, 0, 0)}}},
+      {"sunk_into_triangulated_floor", kUnitBox, makeTriangulatedFloor(10, 10, 10), pose(V3(0, 0, 0.5 - 10 * kEps)),
+       pose(V3::Zero()), true, Status::Interpenetrating, {}},
+      // Half the top box hangs over the edge, sunk by half the tolerance: contact only.
+      {"overhang_within_tolerance", kUnitBox, kUnitBox, pose(V3(0.5, 0, 1 - kEps / 2)), pose(V3::Zero()), false,
+       Status::Contact, {{ContactType::Area, V3(0, 0, 1), 0.5, V3(0.25, 0, 0.5 - kEps / 4)}}},
+      // Side by side at exactly the same height, pushed 0.3 into each other.
+      {"aligned_side_by_side_overlap", kUnitBox, kUnitBox, pose(V3(0.7, 0, 0)), pose(V3::Zero()), false,
+       Status::Interpenetrating, {}},
+      {"aligned_side_by_side_touching", kUnitBox, kUnitBox, pose(V3(1, 0, 0)), pose(V3::Zero()), false,
+       Status::Contact, {{ContactType::Area, V3(1, 0, 0), 1.0, V3(0.5, 0, 0)}}},
+  };
+}
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+class IntersectionCase : public ::testing::TestWithParam<Case> {};
+
+void checkCase(const Case& c, const test::NamedFrame& frame, bool swapped) {
+  SCOPED_TRACE(c.name + " in frame " + frame.name + (swapped ? ", swapped" : ""));
+  ObjectDatabase db;
+  db.tolerance = kEps;
+  auto meshA = std::make_shared<PolygonMesh>(c.meshA);
+  auto meshB = std::make_shared<PolygonMesh>(c.meshB);
+  if (swapped) {
+    db.add("B", meshB, frame.X * c.X_B, c.bStatic);
+    db.add("A", meshA, frame.X * c.X_A, false);
+  } else {
+    db.add("A", meshA, frame.X * c.X_A, false);
+    db.add("B", meshB, frame.X * c.X_B, c.bStatic);
+  }
+  const IntersectionResult r = test4Intersection(db);
+  ASSERT_EQ(toString(r.status), toString(c.status));
+  if (c.status == Status::Separate) {
+    EXPECT_TRUE(r.pairs.empty());
+    return;
+  }
+  ASSERT_EQ(r.pairs.size(), 1u);
+  const PairResult& pair = r.pairs[0];
+  if (c.status == Status::Interpenetrating) {
+    EXPECT_GT(pair.depth, kEps);
+    return;
+  }
+  ASSERT_EQ(pair.contacts.size(), c.contacts.size());
+  for (const ExpectedContact& e : c.contacts) {
+    const V3 normal = (swapped ? -1.0 : 1.0) * (frame.X.linear() * e.normal);
+    const V3 where = frame.X * e.centroid;
+    const Contact* match = nullptr;
+    for (const Contact& got : pair.contacts)
+      if (got.type == e.type && (centroid(got) - where).norm() < 1e-6) match = &got;
+    ASSERT_NE(match, nullptr) << "no " << toString(e.type) << " contact at " << where.transpose();
+    EXPECT_TRUE(test::near(match->normal, normal, 1e-9));
+    EXPECT_NEAR(measure(*match), e.measure, 1e-9);
+    EXPECT_LE(std::abs(match->separation), kEps);
+  }
+}
+
+TEST_P(IntersectionCase, SameContactsInEveryFrameAndOrder) {
+  for (const test::NamedFrame& frame : test::worldFrames()) {
+    checkCase(GetParam(), frame, false);
+    checkCase(GetParam(), frame, true);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(HandDerived, IntersectionCase, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+
+TEST(Intersection, OctagonHasEightCornersOnTheUnitSquares) {
+  ObjectDatabase db;
+  db.add("A", std::make_shared<PolygonMesh>(kUnitBox), pose(V3(0, 0, 1), rot(M_PI / 4, V3::UnitZ())), false);
+  db.add("B", std::make_shared<PolygonMesh>(kUnitBox), pose(V3::Zero()), false);
+  const IntersectionResult r = test4Intersection(db);
+  ASSERT_EQ(r.pairs.size(), 1u);
+  ASSERT_EQ(r.pairs[0].contacts.size(), 1u);
+  const Contact& c = r.pairs[0].contacts[0];
+  ASSERT_EQ(c.points.size(), 8u);
+  for (const V3& p : c.points) {
+    // Every corner lies on the boundary of both squares: the axis one and the turned one.
+    const V3 q = rot(-M_PI / 4, V3::UnitZ()) * p;
+    EXPECT_NEAR(p.head<2>().cwiseAbs().maxCoeff(), 0.5, 1e-9);
+    EXPECT_NEAR(q.head<2>().cwiseAbs().maxCoeff(), 0.5, 1e-9);
+  }
+}
+
+TEST(Intersection, StaticPairsAreNeverTested) {
+  ObjectDatabase db;
+  db.add("floor", std::make_shared<PolygonMesh>(kFloorBox), kFloorPose, true);
+  db.add("wall", std::make_shared<PolygonMesh>(kFloorBox), pose(V3(0, 0, -0.7)), true);  // overlapping
+  const IntersectionResult r = test4Intersection(db);
+  EXPECT_EQ(r.status, Status::Separate);
+  EXPECT_EQ(r.polygonPairsTested, 0);
+}
+
+TEST(Intersection, StopAtInterpenetrationSkipsTheRest) {
+  ObjectDatabase db;
+  db.add("A", std::make_shared<PolygonMesh>(kUnitBox), pose(V3(0, 0, 0.5)), false);
+  db.add("B", std::make_shared<PolygonMesh>(kUnitBox), pose(V3::Zero()), false);
+  IntersectionOptions quick;
+  quick.contacts = false;
+  quick.stopAtInterpenetration = true;
+  const IntersectionResult fast = test4Intersection(db, quick);
+  const IntersectionResult full = test4Intersection(db);
+  EXPECT_EQ(fast.status, Status::Interpenetrating);
+  EXPECT_EQ(full.status, Status::Interpenetrating);
+  EXPECT_TRUE(fast.pairs[0].contacts.empty());
+  EXPECT_NEAR(full.pairs[0].depth, 0.5, 1e-9);
+}
+
+}  // namespace
+}  // namespace polysim::collision

@@ -1,0 +1,110 @@
+#pragma once
+// Helpers shared by the tests: Eigen comparisons that print both values, the world
+// frames every geometric case is re-run under, and small meshes built by hand.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "collision/polygon_mesh.h"
+
+namespace polysim::test {
+
+/// |a - b| <= tol, printing both vectors on failure (FCL's eigen_matrix_compare habit).
+inline ::testing::AssertionResult near(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) {
+  if ((a - b).norm() <= tol) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "[" << a.transpose() << "] vs [" << b.transpose() << "], distance "
+                                       << (a - b).norm() << " > " << tol;
+}
+
+struct NamedFrame {
+  std::string name;
+  Eigen::Isometry3d X;
+};
+
+/// Identity, translated, rotated and near-identity world frames.
+inline std::vector<NamedFrame> worldFrames() {
+  Eigen::Isometry3d translated = Eigen::Isometry3d::Identity();
+  translated.translation() << 3.5, -2.25, 7.0;
+  Eigen::Isometry3d rotated = Eigen::Isometry3d::Identity();
+  rotated.linear() = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  rotated.translation() << -1.0, 0.5, 2.0;
+  Eigen::Isometry3d near = Eigen::Isometry3d::Identity();
+  near.linear() = Eigen::AngleAxisd(1e-7, Eigen::Vector3d(0, 1, 1).normalized()).toRotationMatrix();
+  near.translation() << 1e-7, 0, -1e-7;
+  return {{"identity", Eigen::Isometry3d::Identity()}, {"translated", translated}, {"rotated", rotated}, {"near_identity", near}};
+}
+
+inline Eigen::Isometry3d pose(const Eigen::Vector3d& p, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = p;
+  return X;
+}
+
+inline Eigen::Matrix3d rot(double angle, const Eigen::Vector3d& axis) {
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+/// A prism made by extruding a profile in the (x, z) plane along y from 0 to `depth`.
+/// `parts` are convex pieces of the profile, counter-clockwise, sharing vertices exactly
+/// (no T-junctions); `outline` is the profile's boundary, counter-clockwise.
+inline collision::MeshData extrudeProfile(const std::vector<std::vector<Eigen::Vector2d>>& parts,
+                                          const std::vector<Eigen::Vector2d>& outline, double depth) {
+  collision::MeshData m;
+  auto id = [&](const Eigen::Vector2d& p, double y) {
+    const Eigen::Vector3d v(p.x(), y, p.y());
+    for (size_t i = 0; i < m.vertices.size(); ++i)
+      if ((m.vertices[i] - v).norm() < 1e-12) return static_cast<int>(i);
+    m.vertices.push_back(v);
+    return static_cast<int>(m.vertices.size()) - 1;
+  };
+  for (const auto& part : parts) {
+    std::vector<int> front, back;
+    for (const auto& p : part) front.push_back(id(p, 0.0));
+    for (auto it = part.rbegin(); it != part.rend(); ++it) back.push_back(id(*it, depth));
+    m.faces.push_back(front);
+    m.faces.push_back(back);
+  }
+  for (size_t i = 0; i < outline.size(); ++i) {
+    const auto& p = outline[i];
+    const auto& q = outline[(i + 1) % outline.size()];
+    m.faces.push_back({id(p, 0.0), id(p, depth), id(q, depth), id(q, 0.0)});
+  }
+  return m;
+}
+
+/// A U (a staple) 3 wide, 2 high, 1 deep: legs x in [0,1] and [2,3] from z = 0 to 2,
+/// joined by a bridge over z in [1, 2]. Non-convex, made of convex faces.
+inline collision::MeshData makeStaple() {
+  using V = Eigen::Vector2d;
+  return extrudeProfile({{V(0, 0), V(1, 0), V(1, 1), V(1, 2), V(0, 2)},
+                         {V(1, 1), V(2, 1), V(2, 2), V(1, 2)},
+                         {V(2, 0), V(3, 0), V(3, 2), V(2, 2), V(2, 1)}},
+                        {V(0, 0), V(1, 0), V(1, 1), V(2, 1), V(2, 0), V(3, 0), V(3, 2), V(2, 2), V(1, 2), V(0, 2)}, 1.0);
+}
+
+/// An L: a 2 x 1 foot (x in [0,2], z in [0,1]) with a 1 x 1 upright on its left
+/// (x in [0,1], z in [1,2]); 1 deep. Volume 3, non-convex.
+inline collision::MeshData makeL() {
+  using V = Eigen::Vector2d;
+  return extrudeProfile({{V(0, 0), V(1, 0), V(1, 1), V(1, 2), V(0, 2)}, {V(1, 0), V(2, 0), V(2, 1), V(1, 1)}},
+                        {V(0, 0), V(1, 0), V(2, 0), V(2, 1), V(1, 1), V(1, 2), V(0, 2)}, 1.0);
+}
+
+/// A regular hexagonal prism of circumradius r and height h, centred on the origin,
+/// axis along z: two six-vertex faces.
+inline collision::MeshData makeHexPrism(double r, double h) {
+  collision::MeshData m;
+  for (int k = 0; k < 6; ++k) m.vertices.emplace_back(r * std::cos(k * M_PI / 3), r * std::sin(k * M_PI / 3), -h / 2);
+  for (int k = 0; k < 6; ++k) m.vertices.emplace_back(r * std::cos(k * M_PI / 3), r * std::sin(k * M_PI / 3), h / 2);
+  m.faces.push_back({5, 4, 3, 2, 1, 0});
+  m.faces.push_back({6, 7, 8, 9, 10, 11});
+  for (int k = 0; k < 6; ++k) m.faces.push_back({k, (k + 1) % 6, 6 + (k + 1) % 6, 6 + k});
+  return m;
+}
+
+}  // namespace polysim::test
