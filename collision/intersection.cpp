@@ -52,7 +52,10 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b) {
       if (db.objects[a].isStatic && db.objects[b].isStatic) continue;
-      PairResult pair = testObjectPair(db, a, b, ws, options, &result.polygonPairsTested);
+      // In a static-moving pair the moving object is `a`, so that the normal points from
+      // the ground (or wall) towards what rests on it.
+      const bool flip = db.objects[a].isStatic;
+      PairResult pair = testObjectPair(db, flip ? b : a, flip ? a : b, ws, options, &result.polygonPairsTested);
       if (pair.status == Status::Separate) continue;
       result.status = std::max(result.status, pair.status);
       result.pairs.push_back(std::move(pair));

@@ -21,7 +21,8 @@ struct IntersectionOptions {
 struct IntersectionResult {
   /// The worst status over all pairs.
   Status status = Status::Separate;
-  /// Every pair that is not separate, in order of (a, b).
+  /// Every pair that is not separate, in database order; in a pair of a static and a
+  /// moving object, the moving one is `a`.
   std::vector<PairResult> pairs;
   /// Polygon pairs that reached the polygon-level test: the work the broad steps left.
   long polygonPairsTested = 0;
@@ -43,7 +44,7 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
                                      const IntersectionOptions& options = {});
 IntersectionResult test4Intersection(const ObjectDatabase& db, const IntersectionOptions& options = {});
 
-/// The same test for objects a and b of the database only.
+/// The same test for objects a and b of the database only (normals from b towards a).
 PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWorkspace& workspace,
                           const IntersectionOptions& options, long* polygonPairsTested = nullptr);
 

@@ -1,0 +1,42 @@
+#include "sim/json_output.h"
+
+#include <cmath>
+
+namespace polysim::sim {
+
+double forOutput(double x) {
+  constexpr double kOutputResolution = 1e12;  // 1 / 1e-12
+  return std::round(x * kOutputResolution) / kOutputResolution + 0.0;  // + 0.0 turns -0 into 0
+}
+
+nlohmann::ordered_json toJson(const Eigen::Vector3d& v) {
+  return nlohmann::ordered_json::array({forOutput(v.x()), forOutput(v.y()), forOutput(v.z())});
+}
+
+nlohmann::ordered_json toJson(const collision::Contact& c) {
+  nlohmann::ordered_json points = nlohmann::ordered_json::array();
+  for (const Eigen::Vector3d& p : c.points) points.push_back(toJson(p));
+  return {{"type", collision::toString(c.type)},
+          {"normal", toJson(c.normal)},
+          {"points", points},
+          {"separation", forOutput(c.separation)}};
+}
+
+nlohmann::ordered_json pairsToJson(const std::vector<collision::PairResult>& pairs, const std::vector<std::string>& names) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const collision::PairResult& p : pairs) {
+    nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
+    for (const collision::Contact& c : p.contacts) contacts.push_back(toJson(c));
+    nlohmann::ordered_json pair = {{"a", names[p.a]}, {"b", names[p.b]}, {"status", collision::toString(p.status)},
+                           {"contacts", contacts}};
+    if (p.status == collision::Status::Interpenetrating) pair["depth"] = forOutput(p.depth);
+    out.push_back(pair);
+  }
+  return out;
+}
+
+nlohmann::ordered_json intersectionToJson(const collision::IntersectionResult& r, const std::vector<std::string>& names) {
+  return {{"status", collision::toString(r.status)}, {"pairs", pairsToJson(r.pairs, names)}};
+}
+
+}  // namespace polysim::sim

@@ -1,0 +1,341 @@
+#include "sim/scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "collision/intersection.h"
+#include "collision/shapes.h"
+#include "dynamics/mass_properties.h"
+#include "sim/obj_reader.h"
+
+namespace polysim::sim {
+namespace {
+
+using nlohmann::json;
+
+// Largest icosphere subdivision accepted: 20 * 4^7 = 327680 triangles.
+constexpr int kMaxSubdivisions = 7;
+// How far (SPEC.md) a given orientation may be from unit length.
+constexpr double kUnitQuaternionTolerance = 1e-6;
+
+// Collects every problem with a scene, each as "FILE: WHERE: WHAT".
+class Problems {
+ public:
+  explicit Problems(std::string file) : file_(std::move(file)) {}
+  void add(const std::string& where, const std::string& what) {
+    lines_.push_back(file_ + ": " + (where.empty() ? "" : where + ": ") + what);
+  }
+  bool empty() const { return lines_.empty(); }
+  [[noreturn]] void raise() const {
+    std::string all;
+    for (const std::string& l : lines_) all += (all.empty() ? "" : "\n") + l;
+    throw SceneError(all);
+  }
+
+ private:
+  std::string file_;
+  std::vector<std::string> lines_;
+};
+
+std::string describe(const json& value) {
+  switch (value.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "a boolean";
+    case json::value_t::string: return "a string";
+    case json::value_t::array: return "an array";
+    case json::value_t::object: return "an object";
+    default: return "a number";
+  }
+}
+
+// Reads fields of one JSON object, reporting problems under `where`.
+class Fields {
+ public:
+  Fields(const json& object, std::string where, Problems& problems)
+      : object_(object), where_(std::move(where)), problems_(problems) {}
+
+  void allowOnly(const std::set<std::string>& known) {
+    for (const auto& [key, value] : object_.items())
+      if (!known.count(key)) problems_.add(where_, "unknown field \"" + key + "\"");
+  }
+  bool has(const std::string& key) const { return object_.contains(key); }
+  const json& raw(const std::string& key) const { return object_.at(key); }
+
+  std::optional<double> number(const std::string& key, bool required = false) {
+    if (!has(key)) return missing(key, required), std::nullopt;
+    const json& v = object_.at(key);
+    if (!v.is_number()) return wrong(key, "a number", v), std::nullopt;
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) return problems_.add(where_, key + " is not a finite number"), std::nullopt;
+    return x;
+  }
+  std::optional<double> positive(const std::string& key, bool required = false) {
+    std::optional<double> x = number(key, required);
+    if (x && *x <= 0) problems_.add(where_, key + " must be positive (got " + num(*x) + ")"), x.reset();
+    return x;
+  }
+  std::optional<std::string> string(const std::string& key, bool required = false) {
+    if (!has(key)) return missing(key, required), std::nullopt;
+    if (!object_.at(key).is_string()) return wrong(key, "a string", object_.at(key)), std::nullopt;
+    return object_.at(key).get<std::string>();
+  }
+  std::optional<bool> boolean(const std::string& key) {
+    if (!has(key)) return std::nullopt;
+    if (!object_.at(key).is_boolean()) return wrong(key, "true or false", object_.at(key)), std::nullopt;
+    return object_.at(key).get<bool>();
+  }
+  template <int N>
+  std::optional<Eigen::Matrix<double, N, 1>> vector(const std::string& key, bool required = false) {
+    if (!has(key)) return missing(key, required), std::nullopt;
+    const json& v = object_.at(key);
+    if (!v.is_array() || v.size() != N) return wrong(key, "an array of " + std::to_string(N) + " numbers", v), std::nullopt;
+    Eigen::Matrix<double, N, 1> out;
+    for (int i = 0; i < N; ++i) {
+      if (!v[i].is_number()) return wrong(key + "[" + std::to_string(i) + "]", "a number", v[i]), std::nullopt;
+      out[i] = v[i].get<double>();
+      if (!std::isfinite(out[i]))
+        return problems_.add(where_, key + "[" + std::to_string(i) + "] is not a finite number"), std::nullopt;
+    }
+    return out;
+  }
+  std::optional<int> integer(const std::string& key, bool required = false) {
+    if (!has(key)) return missing(key, required), std::nullopt;
+    const json& v = object_.at(key);
+    if (!v.is_number_integer()) return wrong(key, "an integer", v), std::nullopt;
+    return v.get<int>();
+  }
+  void problem(const std::string& what) { problems_.add(where_, what); }
+  const std::string& where() const { return where_; }
+
+  static std::string num(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  }
+
+ private:
+  void missing(const std::string& key, bool required) {
+    if (required) problems_.add(where_, "missing field \"" + key + "\"");
+  }
+  void wrong(const std::string& key, const std::string& expected, const json& got) {
+    problems_.add(where_, key + " must be " + expected + " (got " + describe(got) + ")");
+  }
+
+  const json& object_;
+  std::string where_;
+  Problems& problems_;
+};
+
+collision::MeshData meshFromJson(Fields& shape) {
+  collision::MeshData mesh;
+  const json& vertices = shape.raw("vertices");
+  const json& faces = shape.raw("faces");
+  if (!vertices.is_array()) return shape.problem("vertices must be an array of [x, y, z]"), mesh;
+  if (!faces.is_array()) return shape.problem("faces must be an array of vertex index lists"), mesh;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const json& v = vertices[i];
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      return shape.problem("vertex " + std::to_string(i) + " must be [x, y, z]"), collision::MeshData{};
+    mesh.vertices.emplace_back(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+  }
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const json& face = faces[f];
+    std::vector<int> ids;
+    bool ok = face.is_array();
+    for (size_t k = 0; ok && k < face.size(); ++k) {
+      ok = face[k].is_number_integer();
+      if (ok) ids.push_back(face[k].get<int>());
+    }
+    if (!ok) return shape.problem("face " + std::to_string(f) + " must be a list of vertex indices"), collision::MeshData{};
+    mesh.faces.push_back(std::move(ids));
+  }
+  return mesh;
+}
+
+// Reads body.shape into `body`; returns false when it could not be read at all.
+bool readShape(const json& shapeJson, BodySpec& body, const std::filesystem::path& sceneDir, Problems& problems,
+               const std::string& where) {
+  if (!shapeJson.is_object()) return problems.add(where, "shape must be an object"), false;
+  Fields shape(shapeJson, where + ": shape", problems);
+  const std::optional<std::string> type = shape.string("type", true);
+  if (!type) return false;
+  body.shapeType = *type;
+  if (*type == "box") {
+    shape.allowOnly({"type", "size"});
+    const auto size = shape.vector<3>("size", true);
+    if (!size) return false;
+    if ((size->array() <= 0).any()) return shape.problem("size must be positive in every axis"), false;
+    body.boxSize = *size;
+    body.mesh = collision::makeBox(*size);
+  } else if (*type == "mesh") {
+    shape.allowOnly({"type", "vertices", "faces"});
+    if (!shape.has("vertices") || !shape.has("faces"))
+      return shape.problem("missing field \"" + std::string(shape.has("vertices") ? "faces" : "vertices") + "\""), false;
+    body.mesh = meshFromJson(shape);
+    if (body.mesh.vertices.empty()) return false;
+  } else if (*type == "obj") {
+    shape.allowOnly({"type", "file"});
+    const auto file = shape.string("file", true);
+    if (!file) return false;
+    try {
+      body.mesh = readObj((sceneDir / *file).string());
+    } catch (const std::exception& e) {
+      return shape.problem(e.what()), false;
+    }
+  } else if (*type == "icosphere") {
+    shape.allowOnly({"type", "radius", "subdivisions"});
+    const auto radius = shape.positive("radius", true);
+    const auto n = shape.has("subdivisions") ? shape.integer("subdivisions") : std::optional<int>(0);
+    if (n && (*n < 0 || *n > kMaxSubdivisions))
+      return shape.problem("subdivisions must be 0.." + std::to_string(kMaxSubdivisions)), false;
+    if (!radius || !n) return false;
+    body.mesh = collision::makeIcosphere(*radius, *n);
+  } else {
+    return shape.problem("unknown shape type \"" + *type + "\" (box, mesh, obj or icosphere)"), false;
+  }
+  const std::vector<std::string> meshProblems = collision::validateMesh(body.mesh, !body.isStatic);
+  for (const std::string& p : meshProblems) shape.problem(p);
+  return meshProblems.empty();
+}
+
+BodySpec readBody(const json& bodyJson, size_t index, const std::filesystem::path& sceneDir,
+                  Problems& problems) {
+  BodySpec body;
+  std::string where = "body " + std::to_string(index);
+  if (!bodyJson.is_object()) return problems.add(where, "must be an object"), body;
+  Fields f(bodyJson, where, problems);
+  if (const auto name = f.string("name", true)) {
+    body.name = *name;
+    where = "body \"" + *name + "\"";
+  }
+  Fields fields(bodyJson, where, problems);
+  fields.allowOnly({"name", "shape", "static", "position", "orientation", "velocity", "angular_velocity", "mass",
+                    "density", "restitution", "friction"});
+  body.isStatic = fields.boolean("static").value_or(false);
+  if (auto p = fields.vector<3>("position")) body.position = *p;
+  if (auto v = fields.vector<3>("velocity")) body.velocity = *v;
+  if (auto w = fields.vector<3>("angular_velocity")) body.angularVelocity = *w;
+  if (auto q = fields.vector<4>("orientation")) {
+    if (std::abs(q->norm() - 1.0) > kUnitQuaternionTolerance)
+      fields.problem("orientation must be a unit quaternion [w, x, y, z] (its length is " + Fields::num(q->norm()) + ")");
+    body.orientation = Eigen::Quaterniond((*q)[0], (*q)[1], (*q)[2], (*q)[3]).normalized();
+  }
+  if (fields.has("mass") && fields.has("density")) fields.problem("give mass or density, not both");
+  body.mass = fields.positive("mass");
+  body.density = fields.positive("density");
+  body.restitution = fields.number("restitution");
+  body.friction = fields.number("friction");
+  if (body.restitution && (*body.restitution < 0 || *body.restitution > 1)) fields.problem("restitution must be in [0, 1]");
+  if (body.friction && *body.friction < 0) fields.problem("friction must not be negative");
+
+  if (!fields.has("shape")) {
+    fields.problem("missing field \"shape\"");
+  } else if (readShape(bodyJson.at("shape"), body, sceneDir, problems, where) && !body.isStatic) {
+    const auto props = dynamics::computeMassProperties(body.mesh.vertices, body.mesh.faces, 1.0);
+    if (props.volume <= 0) fields.problem("shape: the mesh is inside out (its faces are listed clockwise seen from outside)");
+  }
+  return body;
+}
+
+}  // namespace
+
+Eigen::Isometry3d BodySpec::pose() const {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = orientation.toRotationMatrix();
+  X.translation() = position;
+  return X;
+}
+
+Scene loadScene(const std::string& path) {
+  Problems problems(path);
+  std::ifstream in(path);
+  if (!in) {
+    problems.add("", "cannot read the file");
+    problems.raise();
+  }
+  json root;
+  try {
+    root = json::parse(in);
+  } catch (const json::exception& e) {
+    // A syntax error, or a number too large for a double (1e999). nlohmann's what()
+    // starts with "[json.exception.parse_error.101] "; keep the sentence.
+    const std::string what = e.what();
+    problems.add("", "malformed JSON: " + what.substr(what.find("] ") == std::string::npos ? 0 : what.find("] ") + 2));
+    problems.raise();
+  }
+  if (!root.is_object()) {
+    problems.add("", "the scene must be a JSON object");
+    problems.raise();
+  }
+
+  Scene scene;
+  scene.file = path;
+  Fields top(root, "", problems);
+  top.allowOnly({"name", "gravity", "dt", "duration", "contact", "bodies"});
+  scene.name = top.string("name").value_or(std::filesystem::path(path).stem().string());
+  if (auto g = top.vector<3>("gravity")) scene.gravity = *g;
+  if (auto dt = top.positive("dt")) scene.dt = *dt;
+  if (auto d = top.positive("duration")) scene.duration = *d;
+  if (top.has("contact")) {
+    if (!root["contact"].is_object()) {
+      problems.add("contact", "must be an object");
+    } else {
+      Fields contact(root["contact"], "contact", problems);
+      contact.allowOnly({"tolerance", "restitution", "friction"});
+      if (auto t = contact.positive("tolerance")) scene.contact.tolerance = *t;
+      if (auto e = contact.number("restitution")) {
+        if (*e < 0 || *e > 1) contact.problem("restitution must be in [0, 1]");
+        scene.contact.restitution = *e;
+      }
+      if (auto mu = contact.number("friction")) {
+        if (*mu < 0) contact.problem("friction must not be negative");
+        scene.contact.friction = *mu;
+      }
+    }
+  }
+  if (!top.has("bodies")) {
+    problems.add("", "missing field \"bodies\"");
+  } else if (!root["bodies"].is_array() || root["bodies"].empty()) {
+    problems.add("bodies", "must be a non-empty array");
+  } else {
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    std::set<std::string> names;
+    for (size_t i = 0; i < root["bodies"].size(); ++i) {
+      BodySpec body = readBody(root["bodies"][i], i, dir, problems);
+      if (!body.name.empty() && !names.insert(body.name).second)
+        problems.add("body \"" + body.name + "\"", "duplicate name (body names must be unique)");
+      scene.bodies.push_back(std::move(body));
+    }
+  }
+  if (!problems.empty()) problems.raise();
+  return scene;
+}
+
+collision::ObjectDatabase buildObjectDatabase(const Scene& scene) {
+  collision::ObjectDatabase db;
+  db.tolerance = scene.contact.tolerance;
+  for (const BodySpec& b : scene.bodies)
+    db.add(b.name, std::make_shared<collision::PolygonMesh>(b.mesh), b.pose(), b.isStatic);
+  return db;
+}
+
+void checkInitialState(const Scene& scene) {
+  const collision::ObjectDatabase db = buildObjectDatabase(scene);
+  collision::IntersectionOptions options;
+  options.contacts = false;
+  const collision::IntersectionResult r = collision::test4Intersection(db, options);
+  if (r.status != collision::Status::Interpenetrating) return;
+  Problems problems(scene.file);
+  for (const collision::PairResult& p : r.pairs)
+    if (p.status == collision::Status::Interpenetrating)
+      problems.add("bodies \"" + scene.bodies[p.a].name + "\" and \"" + scene.bodies[p.b].name + "\"",
+                   "interpenetrate at the start (by at least " + Fields::num(p.depth) + " m)");
+  problems.raise();
+}
+
+}  // namespace polysim::sim

@@ -1,0 +1,71 @@
+#pragma once
+// A scene as SPEC.md describes it: settings and bodies, loaded from JSON and validated
+// before anything runs.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "collision/object.h"
+#include "collision/polygon_mesh.h"
+#include "collision/tolerances.h"
+
+namespace polysim::sim {
+
+/// A scene file that cannot be used. what() is the whole message: one line per problem,
+/// each naming the file, the body and the field.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The scene-level contact settings (SPEC.md defaults).
+struct ContactSettings {
+  double tolerance = collision::kDefaultContactTolerance;  // m
+  double restitution = 0.0;
+  double friction = 0.5;
+};
+
+struct BodySpec {
+  std::string name;
+  std::string shapeType;  // "box", "mesh", "obj" or "icosphere"
+  Eigen::Vector3d boxSize = Eigen::Vector3d::Zero();  // for boxes (m)
+  collision::MeshData mesh;                            // every shape, boxes included
+  bool isStatic = false;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();           // m, world
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();           // m/s, world
+  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();    // rad/s, world
+  std::optional<double> mass;     // kg
+  std::optional<double> density;  // kg/m^3 (default 1000 when neither is given)
+  std::optional<double> restitution, friction;  // override the scene's
+
+  Eigen::Isometry3d pose() const;
+};
+
+struct Scene {
+  std::string name;
+  std::string file;  // as given on the command line
+  Eigen::Vector3d gravity{0, 0, -9.81};  // m/s^2
+  double dt = 1.0 / 240.0;               // s
+  double duration = 1.0;                 // s
+  ContactSettings contact;
+  std::vector<BodySpec> bodies;
+};
+
+/// Reads and validates a scene file. Throws SceneError listing every problem found:
+/// malformed JSON, missing, mistyped or unknown fields, non-finite numbers, non-positive
+/// sizes, masses or densities, duplicate names, bad meshes (see validateMesh), open
+/// meshes on dynamic bodies, inside-out meshes. Interpenetration at the start is checked
+/// by checkInitialState (it needs the collision module).
+Scene loadScene(const std::string& path);
+
+/// The collision database of the scene's bodies at their initial poses, in scene order.
+collision::ObjectDatabase buildObjectDatabase(const Scene& scene);
+
+/// Throws SceneError naming each pair of bodies that interpenetrates at the start.
+void checkInitialState(const Scene& scene);
+
+}  // namespace polysim::sim
