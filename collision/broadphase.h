@@ -25,10 +25,18 @@ struct FacePair {
   int a, b;
 };
 
-/// Every pair of faces whose world boxes, grown by eps, overlap inside `region`, found by
-/// descending both voxel grids together (see voxel_grid.h), without duplicates and in a
-/// deterministic order. `facesA` and `facesB` must be reset() to a and b.
+/// Calls visit(fa, fb) for every pair of faces whose world boxes, grown by eps, overlap
+/// inside `region`, found by descending both voxel grids together (see voxel_grid.h).
+/// A pair may be visited more than once (a face lies in several voxels). The descent
+/// stops early when visit returns false. `facesA` and `facesB` must be reset() to a, b.
+template <class Visit>
+void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
+                          const Eigen::AlignedBox3d& region, double eps, Visit&& visit);
+
+/// Every candidate pair once, in a deterministic order.
 void candidatePolygonPairs(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
                            const Eigen::AlignedBox3d& region, double eps, std::vector<FacePair>& pairs);
 
 }  // namespace polysim::collision
+
+#include "collision/broadphase_descent.h"

@@ -22,20 +22,29 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   WorldFaces& facesB = ws.faces[b];
   facesA.reset(A);
   facesB.reset(B);
-  candidatePolygonPairs(A, facesA, B, facesB, *region, eps, ws.candidates);
-  if (polygonPairsTested) *polygonPairsTested += static_cast<long>(ws.candidates.size());
-
   ws.raw.clear();
   bool touching = false;
-  for (const FacePair& fp : ws.candidates) {
-    const PolygonPairOutcome o = testPolygonPair(facesA.view(fp.a), facesB.view(fp.b), eps,
+  auto judge = [&](int fa, int fb) {
+    const PolygonPairOutcome o = testPolygonPair(facesA.view(fa), facesB.view(fb), eps,
                                                  options.contacts ? &ws.raw : nullptr, ws.scratch);
     if (o.status == Status::Interpenetrating) {
       result.status = Status::Interpenetrating;
       result.depth = std::max(result.depth, o.depth);
-      if (options.stopAtInterpenetration) break;
     }
     touching = touching || o.status == Status::Contact;
+    return !(options.stopAtInterpenetration && result.status == Status::Interpenetrating);
+  };
+  if (options.stopAtInterpenetration && !options.contacts) {
+    // Only the verdict is wanted: judge pairs as the descent finds them (a pair may be
+    // judged twice) and stop at the first interpenetration.
+    long visited = 0;
+    forEachCandidatePair(A, facesA, B, facesB, *region, eps, [&](int fa, int fb) { return ++visited, judge(fa, fb); });
+    if (polygonPairsTested) *polygonPairsTested += visited;
+  } else {
+    candidatePolygonPairs(A, facesA, B, facesB, *region, eps, ws.candidates);
+    if (polygonPairsTested) *polygonPairsTested += static_cast<long>(ws.candidates.size());
+    for (const FacePair& fp : ws.candidates)
+      if (!judge(fp.a, fp.b)) break;
   }
   if (result.status == Status::Interpenetrating) return result;
   if (touching) {

@@ -84,7 +84,8 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
   Eigen::Vector2d a = frame.to2d(c0), b = frame.to2d(c1);
   if (!clipSegment(s.q2, eps, a, b)) return 0.0;
 
-  std::vector<std::pair<double, double>> lines;  // inside distance along the cut, per sharp edge
+  std::vector<std::pair<double, double>>& lines = s.lines;  // inside distance along the cut, per sharp edge
+  lines.clear();
   for (int k = 0; k < q.size; ++k) {
     if (q.edgeFlat[k]) continue;
     const Eigen::Vector2d e = s.q2[(k + 1) % q.size] - s.q2[k];
@@ -245,8 +246,7 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   if (*minQ < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
   if (depth > eps) return {Status::Interpenetrating, depth};
 
-  std::vector<Contact> discard;
-  std::vector<Contact>& out = contacts ? *contacts : discard;
+  std::vector<Contact>& out = contacts ? *contacts : s.discard;
   const size_t before = out.size();
   const bool coplanar = *minP >= -eps && *maxP <= eps && *minQ >= -eps && *maxQ <= eps;
   if (!(coplanar && p.plane.normal.dot(q.plane.normal) < 0 && areaContact(p, s.dP.data(), q, eps, out, s))) {
@@ -255,7 +255,7 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
     edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out);
   }
   const bool touching = out.size() > before;
-  if (!contacts) discard.clear();
+  if (!contacts) s.discard.clear();
   return {touching ? Status::Contact : Status::Separate, 0.0};
 }
 

@@ -27,6 +27,8 @@ struct PolygonScratch {
   std::vector<double> dP, dQ;
   std::vector<Eigen::Vector3d> clipA, clipB;
   Polygon2 p2, q2;
+  std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge
+  std::vector<Contact> discard;                  // contacts found when none are wanted
 };
 
 /// The verdict for one polygon pair.

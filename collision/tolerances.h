@@ -38,10 +38,12 @@ inline constexpr double kParallelSine = 1.5e-8;
 /// A planar patch within kPlanarityTolerance over 0.01 m faces bends by about 1e-4.
 inline constexpr double kFlatEdgeAngle = 1e-4;
 
-/// Default number of times the voxel grid halves an object's container. Garcia-Alonso
-/// et al. found 8 or 9 best for their meshes; finer grids pay off for large meshes
-/// (see VoxelGrid::chooseHalvings and the benchmark in tests/bench).
-inline constexpr int kMinVoxelHalvings = 8;
-inline constexpr int kMaxVoxelHalvings = 20;
+/// Bounds on the number of times the voxel grid halves an object's container (M).
+/// Garcia-Alonso et al. found 8 or 9 best for their meshes; polysim picks M so that
+/// voxels are about as long as the object's faces (VoxelGrid::chooseHalvings): a box
+/// needs none, a 20480-triangle sphere about 16. The benchmark in tests/bench sweeps M.
+/// The upper bound caps the grid's memory (2^(M+1) cells of 48 bytes: 6 MB at 16).
+inline constexpr int kMinVoxelHalvings = 0;
+inline constexpr int kMaxVoxelHalvings = 16;
 
 }  // namespace polysim::collision

@@ -54,21 +54,32 @@ VoxelGrid::VoxelGrid(const PolygonMesh& mesh, int halvings, double padding) {
     }
   }
 
-  // Occupancy, from the leaves up: a cell is occupied when either of its halves is.
-  occupied_.resize(halvings + 1);
-  occupied_[halvings].resize(leafCount);
-  for (int i = 0; i < leafCount; ++i) occupied_[halvings][i] = start_[i + 1] > start_[i];
+  // Content boxes, from the leaves up: a leaf holds its faces' boxes clipped to it, a
+  // parent the union of its halves.
+  content_.resize(halvings + 1);
+  content_[halvings].assign(leafCount, Eigen::AlignedBox3d());
+  for (int z = 0; z < n.z(); ++z)
+    for (int y = 0; y < n.y(); ++y)
+      for (int x = 0; x < n.x(); ++x) {
+        const VoxelCell leaf{halvings, Eigen::Array3i(x, y, z)};
+        const int id = linear(leaf);
+        if (start_[id] == start_[id + 1]) continue;
+        const Eigen::AlignedBox3d cellBounds = cellBox(leaf);
+        Eigen::AlignedBox3d& box = content_[halvings][id];
+        for (int k = start_[id]; k < start_[id + 1]; ++k) box.extend(mesh.faceBounds(faces_[k]).intersection(cellBounds));
+      }
   for (int m = halvings - 1; m >= 0; --m) {
     const Eigen::Array3i& child = dims_[m + 1];
-    occupied_[m].assign(dims_[m].prod(), 0);
+    content_[m].assign(dims_[m].prod(), Eigen::AlignedBox3d());
     const int axis = splitAxis_[m];
     for (int z = 0; z < child.z(); ++z)
       for (int y = 0; y < child.y(); ++y)
         for (int x = 0; x < child.x(); ++x) {
-          if (!occupied_[m + 1][x + child.x() * (y + child.y() * z)]) continue;
+          const Eigen::AlignedBox3d& box = content_[m + 1][x + child.x() * (y + child.y() * z)];
+          if (box.isEmpty()) continue;
           Eigen::Array3i parent(x, y, z);
           parent[axis] /= 2;
-          occupied_[m][linear({m, parent})] = 1;
+          content_[m][linear({m, parent})].extend(box);
         }
   }
 }

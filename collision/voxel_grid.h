@@ -4,8 +4,8 @@
 // voxel lists the faces whose bounding box meets it. Because the grid is made by
 // successive halvings, level m of that sequence (m = 0..M) is itself a grid whose cells
 // each split in two at level m+1: the levels form an implicit binary tree, which the
-// broad phase descends two objects at a time, pruning empty cells and cells whose world
-// boxes do not meet.
+// broad phase descends two objects at a time. Each cell keeps the tight box of what it
+// holds (its faces' boxes clipped to the cell), so empty space prunes early.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -27,15 +27,18 @@ class VoxelGrid {
   /// grown by `padding` (m) so that flat objects still have a thickness to divide.
   VoxelGrid(const PolygonMesh& mesh, int halvings, double padding);
 
-  /// M for a mesh: voxels about the size of its faces (Garcia-Alonso's 8 for small
-  /// meshes, more for large ones), clamped to [kMinVoxelHalvings, kMaxVoxelHalvings].
+  /// M for a mesh: voxels about the size of its faces, clamped to
+  /// [kMinVoxelHalvings, kMaxVoxelHalvings].
   static int chooseHalvings(const PolygonMesh& mesh);
 
   int halvings() const { return static_cast<int>(splitAxis_.size()); }
   const Eigen::AlignedBox3d& container() const { return container_; }
   /// The cell's box in the object's frame.
   Eigen::AlignedBox3d cellBox(const VoxelCell& cell) const;
-  bool occupied(const VoxelCell& cell) const { return occupied_[cell.level][linear(cell)] != 0; }
+  /// The box (object frame) of the faces listed in the cell or below it, clipped to the
+  /// cell; empty when no face reaches the cell.
+  const Eigen::AlignedBox3d& contentBox(const VoxelCell& cell) const { return content_[cell.level][linear(cell)]; }
+  bool occupied(const VoxelCell& cell) const { return !contentBox(cell).isEmpty(); }
   bool isLeaf(const VoxelCell& cell) const { return cell.level == halvings(); }
   /// The two halves of a non-leaf cell.
   void children(const VoxelCell& cell, VoxelCell& first, VoxelCell& second) const;
@@ -54,7 +57,7 @@ class VoxelGrid {
   Eigen::AlignedBox3d container_;
   std::vector<int> splitAxis_;                      // axis doubled going from level m to m+1
   std::vector<Eigen::Array3i> dims_;                // cells per axis at each level
-  std::vector<std::vector<std::uint8_t>> occupied_; // per level, per cell: any face below?
+  std::vector<std::vector<Eigen::AlignedBox3d>> content_;  // per level, per cell
   std::vector<int> start_;                          // CSR offsets per leaf voxel
   std::vector<int> faces_;
 };

@@ -1,0 +1,157 @@
+// test4Intersection() beside ODE's dCollide on the same geometry and the same question
+// (issue 2): an icosphere pair, separate or interpenetrating; a box on a triangulated
+// floor, full contact set; and the voxel-grid build. Run:
+//   build/tests/bench/intersection_bench --benchmark_counters_tabular=true
+
+#include <benchmark/benchmark.h>
+#include <ode/ode.h>
+
+#include <memory>
+
+#include "collision/intersection.h"
+#include "collision/shapes.h"
+#include "collision/tolerances.h"
+#include "tests/bench/ode_geometry.h"
+
+namespace polysim::bench {
+namespace {
+
+using V3 = Eigen::Vector3d;
+using collision::ObjectDatabase;
+using collision::PolygonMesh;
+
+struct OdeSession {
+  OdeSession() { dInitODE2(0); }
+  ~OdeSession() { dCloseODE(); }
+};
+const OdeSession kOde;
+
+Eigen::Isometry3d at(const V3& p, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = p;
+  return X;
+}
+
+// Sphere B turned so that one of its vertices faces sphere A along the centre line.
+struct SpherePair {
+  collision::MeshData mesh;
+  Eigen::Isometry3d X_A, X_B;
+  SpherePair(int level, double distance) : mesh(collision::makeIcosphere(1.0, level)) {
+    const V3 axis = V3(1, 1, 1).normalized();
+    const V3 vertex = mesh.vertices[0].normalized();
+    X_A = at(V3::Zero());
+    X_B = at(distance * axis, Eigen::Quaterniond::FromTwoVectors(vertex, -axis).toRotationMatrix());
+  }
+};
+
+// Arguments: icosphere level, centre distance in hundredths, voxel halvings (-1: auto).
+void BM_Polysim_Icospheres(benchmark::State& state) {
+  const SpherePair pair(static_cast<int>(state.range(0)), state.range(1) / 100.0);
+  ObjectDatabase db;
+  auto mesh = std::make_shared<PolygonMesh>(pair.mesh);
+  db.add("A", mesh, pair.X_A, false, static_cast<int>(state.range(2)));
+  db.add("B", mesh, pair.X_B, false, static_cast<int>(state.range(2)));
+  collision::IntersectionWorkspace ws;
+  collision::IntersectionOptions verdictOnly;
+  verdictOnly.contacts = false;
+  verdictOnly.stopAtInterpenetration = true;
+  collision::IntersectionResult r;
+  for (auto _ : state) {
+    r = collision::test4Intersection(db, ws, verdictOnly);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["triangles"] = mesh->faceCount();
+  state.counters["M"] = db.objects[0].grid->halvings();
+  state.counters["interpenetrating"] = r.status == collision::Status::Interpenetrating;
+  state.counters["polygon_pairs"] = static_cast<double>(r.polygonPairsTested);
+}
+
+void BM_Ode_Icospheres(benchmark::State& state) {
+  const SpherePair pair(static_cast<int>(state.range(0)), state.range(1) / 100.0);
+  OdeTriMesh a(pair.mesh), b(pair.mesh);
+  setPose(a.geom(), pair.X_A);
+  setPose(b.geom(), pair.X_B);
+  dContactGeom contact[1];
+  int n = 0;
+  for (auto _ : state) {
+    n = dCollide(a.geom(), b.geom(), 1, contact, sizeof(dContactGeom));
+    benchmark::DoNotOptimize(n);
+  }
+  state.counters["triangles"] = static_cast<double>(pair.mesh.faces.size());
+  state.counters["interpenetrating"] = n > 0;
+}
+
+void icosphereArgs(benchmark::internal::Benchmark* b, bool withM) {
+  for (int distance : {210, 190})
+    for (int level = 0; level <= 5; ++level) b->Args({level, distance, -1});
+  if (withM)
+    for (int distance : {210, 190})
+      for (int m : {6, 8, 9, 10, 12, 14, 16, 18}) b->Args({5, distance, m});
+}
+BENCHMARK(BM_Polysim_Icospheres)->Apply([](auto* b) { icosphereArgs(b, true); })->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Ode_Icospheres)->Apply([](auto* b) { icosphereArgs(b, false); })->Unit(benchmark::kMicrosecond);
+
+// A unit box resting on a 10 x 10 floor of 2 k^2 triangles, half a tolerance deep so that
+// ODE (which reports touching only when penetrating) sees the contact too.
+constexpr double kSink = 0.5 * collision::kDefaultContactTolerance;
+
+void BM_Polysim_BoxOnFloor(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  ObjectDatabase db;
+  db.add("floor", std::make_shared<PolygonMesh>(collision::makeTriangulatedFloor(10, 10, k)), at(V3::Zero()), true,
+         static_cast<int>(state.range(1)));
+  db.add("box", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), at(V3(0.05, 0.05, 0.5 - kSink)), false);
+  collision::IntersectionWorkspace ws;
+  collision::IntersectionResult r;
+  for (auto _ : state) {
+    r = collision::test4Intersection(db, ws);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["triangles"] = 2.0 * k * k;
+  state.counters["M"] = db.objects[0].grid->halvings();
+  state.counters["contacts"] = r.pairs.empty() ? 0.0 : static_cast<double>(r.pairs[0].contacts.size());
+  state.counters["polygon_pairs"] = static_cast<double>(r.polygonPairsTested);
+}
+
+void BM_Ode_BoxOnFloor(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  OdeTriMesh floor(collision::makeTriangulatedFloor(10, 10, k));
+  dGeomID box = dCreateBox(nullptr, 1, 1, 1);
+  setPose(box, at(V3(0.05, 0.05, 0.5 - kSink)));
+  std::vector<dContactGeom> contacts(1000);
+  int n = 0;
+  for (auto _ : state) {
+    n = dCollide(box, floor.geom(), 1000, contacts.data(), sizeof(dContactGeom));
+    benchmark::DoNotOptimize(n);
+  }
+  dGeomDestroy(box);
+  state.counters["triangles"] = 2.0 * k * k;
+  state.counters["contacts"] = n;
+}
+
+void floorArgs(benchmark::internal::Benchmark* b, bool withM) {
+  for (int k : {10, 25, 50, 100}) b->Args({k, -1});
+  if (withM)
+    for (int m : {6, 8, 9, 10, 12, 14, 16}) b->Args({100, m});
+}
+BENCHMARK(BM_Polysim_BoxOnFloor)->Apply([](auto* b) { floorArgs(b, true); })->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Ode_BoxOnFloor)->Apply([](auto* b) { floorArgs(b, false); })->Unit(benchmark::kMicrosecond);
+
+// Building the voxel grid of a 20480-triangle icosphere (target: under 2 ms).
+void BM_VoxelGridBuild(benchmark::State& state) {
+  const PolygonMesh mesh(collision::makeIcosphere(1.0, 5));
+  const int m = state.range(0) < 0 ? collision::VoxelGrid::chooseHalvings(mesh) : static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    collision::VoxelGrid grid(mesh, m, collision::kDefaultContactTolerance);
+    benchmark::DoNotOptimize(grid);
+  }
+  state.counters["M"] = m;
+  state.counters["triangles"] = mesh.faceCount();
+}
+BENCHMARK(BM_VoxelGridBuild)->Arg(-1)->Arg(8)->Arg(12)->Arg(16)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace polysim::bench
+
+BENCHMARK_MAIN();
