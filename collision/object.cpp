@@ -1,5 +1,7 @@
 #include "collision/object.h"
 
+#include "collision/thickness.h"
+
 namespace polysim::collision {
 
 int ObjectDatabase::add(std::string name, std::shared_ptr<const PolygonMesh> mesh, const Eigen::Isometry3d& X_WO,
@@ -7,6 +9,7 @@ int ObjectDatabase::add(std::string name, std::shared_ptr<const PolygonMesh> mes
   ObjNode node;
   node.name = std::move(name);
   node.grid = std::make_shared<VoxelGrid>(*mesh, halvings < 0 ? VoxelGrid::chooseHalvings(*mesh) : halvings, tolerance);
+  node.thickness = minimumThickness(*mesh, *node.grid);
   node.mesh = std::move(mesh);
   node.X_WO = X_WO;
   node.isStatic = isStatic;

@@ -30,6 +30,8 @@ struct ObjNode {
   /// Upper bound (m) on how far any point of the object moves during the interval; used
   /// by collisionDetect() to catch objects passing through each other. Infinity: unknown.
   double motionBound = 0.0;
+  /// The object's least thickness (m; see thickness.h), computed when it is added.
+  double thickness = 0.0;
 };
 
 /// The object database: the objects and the contact tolerance they are judged with.

@@ -94,7 +94,6 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
     lines.emplace_back(fa, cross2(e, b - s.q2[k]) / len - fa);
   }
   const double cutDepth = maxOfMinOfLines(lines);
-  if (cutDepth <= eps) return cutDepth;
 
   // p clipped to the region behind q and inside q's prism.
   s.clipA.assign(p.vertices, p.vertices + p.size);
@@ -229,17 +228,33 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
   }
 }
 
+// A polygon wholly beyond the band on one side of the other's plane cannot come within
+// eps of it; whether it lies inside the other object is for other polygon pairs to see.
+bool outOfReach(const std::vector<double>& dP, const std::vector<double>& dQ, double eps) {
+  const auto [minP, maxP] = std::minmax_element(dP.begin(), dP.end());
+  const auto [minQ, maxQ] = std::minmax_element(dQ.begin(), dQ.end());
+  return *minP > eps || *maxP < -eps || *minQ > eps || *maxQ < -eps;
+}
+
 }  // namespace
+
+double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, PolygonScratch& s) {
+  signedDistances(p, q.plane, s.dP);
+  signedDistances(q, p.plane, s.dQ);
+  if (outOfReach(s.dP, s.dQ, eps)) return 0.0;
+  double depth = 0.0;
+  if (*std::min_element(s.dP.begin(), s.dP.end()) < 0) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));
+  if (*std::min_element(s.dQ.begin(), s.dQ.end()) < 0) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
+  return depth;
+}
 
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& s) {
   signedDistances(p, q.plane, s.dP);
   signedDistances(q, p.plane, s.dQ);
+  if (outOfReach(s.dP, s.dQ, eps)) return {};
   const auto [minP, maxP] = std::minmax_element(s.dP.begin(), s.dP.end());
   const auto [minQ, maxQ] = std::minmax_element(s.dQ.begin(), s.dQ.end());
-  // A polygon wholly beyond the band on one side of the other's plane cannot come within
-  // eps of it; whether it lies inside the other object is for other polygon pairs to see.
-  if (*minP > eps || *maxP < -eps || *minQ > eps || *maxQ < -eps) return {};
 
   double depth = 0.0;
   if (*minP < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));

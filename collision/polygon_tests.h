@@ -50,4 +50,8 @@ struct PolygonPairOutcome {
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& scratch);
 
+/// How far (m) p goes inside q's object or q inside p's, measured as in testPolygonPair
+/// (0 when neither goes behind the other); not compared with any tolerance.
+double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, PolygonScratch& scratch);
+
 }  // namespace polysim::collision

@@ -46,4 +46,26 @@ inline constexpr double kFlatEdgeAngle = 1e-4;
 inline constexpr int kMinVoxelHalvings = 0;
 inline constexpr int kMaxVoxelHalvings = 16;
 
+/// collisionDetect() stops refining the time of contact when the bracket is narrower
+/// than this fraction of the interval: far below any physical time scale of a step,
+/// well above the round-off of t in [0, 1].
+inline constexpr double kTimeTolerance = 1e-9;
+
+/// The regula-falsi method stops once the signed separation is within this fraction of
+/// the contact tolerance (and the state is not interpenetrating): close enough to the
+/// exact touching time that the time error is this distance over the approach speed.
+inline constexpr double kRootDistanceFraction = 1e-3;
+
+/// Most intersection tests one collisionDetect() call may make while refining, a guard
+/// against non-convergence (bisection needs log2(1/kTimeTolerance) = 30).
+inline constexpr int kMaxTimeOfContactIterations = 100;
+
+/// Between two tests, no point may move (relative to the other object) more than this
+/// fraction of the thinner object's thickness, so that nothing passes through unseen.
+inline constexpr double kTunnelingSafety = 0.5;
+
+/// Most sub-intervals collisionDetect() splits an interval into against tunnelling;
+/// beyond it the no-tunnelling guarantee is not kept (the result says so).
+inline constexpr int kMaxSubintervals = 4096;
+
 }  // namespace polysim::collision

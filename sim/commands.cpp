@@ -1,8 +1,11 @@
 #include "sim/commands.h"
 
 #include <ostream>
+#include <stdexcept>
 
+#include "collision/time_of_contact.h"
 #include "sim/json_output.h"
+#include "sim/kinematic_motion.h"
 #include "sim/scene.h"
 
 namespace polysim::sim {
@@ -21,6 +24,41 @@ int contactsCommand(const std::string& scenePath, std::ostream& out) {
   const collision::ObjectDatabase db = buildObjectDatabase(scene);
   const collision::IntersectionResult r = collision::test4Intersection(db);
   out << intersectionToJson(r, bodyNames(scene)).dump() << "\n";
+  return 0;
+}
+
+int tocCommand(const std::string& scenePath, double interval, const std::string& method, std::ostream& out) {
+  collision::TocOptions options;
+  if (method == "bisection") options.method = collision::TocMethod::Bisection;
+  else if (method == "regula-falsi") options.method = collision::TocMethod::RegulaFalsi;
+  else throw std::invalid_argument("unknown --method \"" + method + "\" (bisection or regula-falsi)");
+
+  const Scene scene = loadScene(scenePath);
+  checkInitialState(scene);
+  const double T = interval > 0 ? interval : scene.dt;
+  collision::ObjectDatabase db = buildObjectDatabase(scene);
+  std::vector<KinematicMotion> motions(scene.bodies.size());
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    if (b.isStatic || (b.velocity.isZero() && b.angularVelocity.isZero())) continue;
+    motions[i] = {b.pose(), b.velocity, b.angularVelocity, T};
+    collision::ObjNode& node = db.objects[i];
+    node.ctrans = kinematicPose;
+    node.info = &motions[i];
+    node.motionBound = kinematicMotionBound(motions[i], *node.mesh);
+  }
+  db.setTime(1.0);  // collisionDetect starts from the poses at the end of the interval
+  const collision::TocResult r = collision::collisionDetect(db, options);
+  nlohmann::ordered_json j;
+  j["time"] = forOutput(r.time * T);
+  j["fraction"] = forOutput(r.time);
+  j["status"] = collision::toString(r.status);
+  j["pairs"] = pairsToJson(r.pairs, bodyNames(scene));
+  j["iterations"] = r.iterations;
+  j["method"] = collision::toString(options.method);
+  j["stopped_by"] = collision::toString(r.stoppedBy);
+  j["subintervals"] = r.subintervals;
+  out << j.dump() << "\n";
   return 0;
 }
 

@@ -11,4 +11,9 @@ namespace polysim::sim {
 /// `polysim contacts SCENE`: test4Intersection() on the initial state.
 int contactsCommand(const std::string& scenePath, std::ostream& out);
 
+/// `polysim toc SCENE [--interval T] [--method M]`: collisionDetect() over [0, T] with
+/// every moving body kinematic (constant velocity and angular velocity); T <= 0 means
+/// the scene's dt. `method` is "bisection" or "regula-falsi".
+int tocCommand(const std::string& scenePath, double interval, const std::string& method, std::ostream& out);
+
 }  // namespace polysim::sim

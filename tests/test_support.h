@@ -107,4 +107,30 @@ inline collision::MeshData makeHexPrism(double r, double h) {
   return m;
 }
 
+/// A square cup: outer side 2*outer, height `height`, walls `wall` thick, a floor
+/// `floor` thick; the origin at the centre of its bottom face. Non-convex, 14 convex faces.
+inline collision::MeshData makeCup(double outer, double height, double wall, double floor) {
+  collision::MeshData m;
+  const double w = outer - wall;
+  auto square = [&](double h, double z) {
+    const int first = static_cast<int>(m.vertices.size());
+    m.vertices.emplace_back(-h, -h, z);
+    m.vertices.emplace_back(h, -h, z);
+    m.vertices.emplace_back(h, h, z);
+    m.vertices.emplace_back(-h, h, z);
+    return first;
+  };
+  const int ob = square(outer, 0), ot = square(outer, height), it = square(w, height), ib = square(w, floor);
+  // Each face listed counter-clockwise seen from outside the solid.
+  m.faces.push_back({ob + 0, ob + 3, ob + 2, ob + 1});  // bottom, facing -z
+  m.faces.push_back({ib + 0, ib + 1, ib + 2, ib + 3});  // cavity floor, facing +z
+  for (int k = 0; k < 4; ++k) {
+    const int k1 = (k + 1) % 4;
+    m.faces.push_back({ob + k, ob + k1, ot + k1, ot + k});  // outer wall
+    m.faces.push_back({ot + k, ot + k1, it + k1, it + k});  // rim
+    m.faces.push_back({it + k, it + k1, ib + k1, ib + k});  // inner wall, facing the cavity
+  }
+  return m;
+}
+
 }  // namespace polysim::test

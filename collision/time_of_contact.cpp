@@ -1,0 +1,240 @@
+#include "collision/time_of_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "collision/aabb.h"
+#include "collision/broadphase.h"
+#include "collision/polygon_distance.h"
+#include "collision/tolerances.h"
+
+namespace polysim::collision {
+namespace {
+
+using PairIds = std::vector<std::pair<int, int>>;
+
+// The state of the search: the database, its workspace and the count of tests made.
+struct Search {
+  ObjectDatabase& db;
+  IntersectionWorkspace ws;
+  int tests = 0;
+
+  // Sets the database to time t and returns the status of every pair (no contacts).
+  IntersectionResult statusAt(double t) {
+    db.setTime(t);
+    ++tests;
+    IntersectionOptions statusOnly;
+    statusOnly.contacts = false;
+    return test4Intersection(db, ws, statusOnly);
+  }
+};
+
+PairIds interpenetratingPairs(const IntersectionResult& r) {
+  PairIds ids;
+  for (const PairResult& p : r.pairs)
+    if (p.status == Status::Interpenetrating) ids.emplace_back(p.a, p.b);
+  return ids;
+}
+
+// True when every pair of `ids` is in contact (not separate, not interpenetrating) in r.
+bool allInContact(const IntersectionResult& r, const PairIds& ids) {
+  for (const auto& [a, b] : ids) {
+    const auto it = std::find_if(r.pairs.begin(), r.pairs.end(), [&](const PairResult& p) { return p.a == a && p.b == b; });
+    if (it == r.pairs.end() || it->status != Status::Contact) return false;
+  }
+  return true;
+}
+
+// Into how many sub-intervals the interval must be split so that no pair moves farther
+// than kTunnelingSafety times its thinner object's thickness between two tests.
+int subintervalsAgainstTunnelling(const ObjectDatabase& db) {
+  double worst = 0.0;
+  const int n = static_cast<int>(db.objects.size());
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const ObjNode& A = db.objects[a];
+      const ObjNode& B = db.objects[b];
+      const double motion = A.motionBound + B.motionBound;
+      const double thickness = std::min(A.thickness, B.thickness);
+      if (motion <= 0.0 || !std::isfinite(thickness)) continue;
+      // Every pose in the interval lies within the t = 1 box grown by the motion bound.
+      if (!grow(worldContainer(A), A.motionBound).intersects(grow(worldContainer(B), B.motionBound))) continue;
+      worst = std::max(worst, motion / (kTunnelingSafety * thickness));
+    }
+  return static_cast<int>(std::clamp(std::ceil(worst), 1.0, static_cast<double>(kMaxSubintervals)));
+}
+
+// Signed separation of the given pairs at the current state: the least over them of the
+// distance apart (at most `reach`), or minus the deepest penetration when one goes inside.
+double signedSeparation(Search& s, const PairIds& ids, double reach) {
+  double least = reach;
+  for (const auto& [a, b] : ids) {
+    const ObjNode& A = s.db.objects[a];
+    const ObjNode& B = s.db.objects[b];
+    const std::optional<Eigen::AlignedBox3d> region = overlapRegion(A, B, reach);
+    if (!region) continue;
+    if (s.ws.faces.size() < s.db.objects.size()) s.ws.faces.resize(s.db.objects.size());
+    WorldFaces& fa = s.ws.faces[a];
+    WorldFaces& fb = s.ws.faces[b];
+    fa.reset(A);
+    fb.reset(B);
+    double depth = 0.0, distance = reach;
+    forEachCandidatePair(A, fa, B, fb, *region, reach, [&](int pa, int pb) {
+      const PolygonView p = fa.view(pa), q = fb.view(pb);
+      const double d = penetrationDepth(p, q, s.db.tolerance, s.ws.scratch);
+      if (d > 0.0) depth = std::max(depth, d);
+      else if (depth == 0.0) distance = std::min(distance, polygonDistance(p, q, s.ws.scratch));
+      return true;
+    });
+    least = std::min(least, depth > 0.0 ? -depth : distance);
+  }
+  return least;
+}
+
+// How far the pairs could come towards each other over the whole interval: the reach of
+// the separation measure (a separation beyond it is reported as the reach).
+double separationReach(const ObjectDatabase& db, const PairIds& ids) {
+  double reach = 10 * db.tolerance;
+  for (const auto& [a, b] : ids) {
+    double motion = db.objects[a].motionBound + db.objects[b].motionBound;
+    if (motion <= 0.0)
+      motion = std::min(db.objects[a].grid->container().sizes().norm(), db.objects[b].grid->container().sizes().norm());
+    reach = std::max(reach, motion);
+  }
+  return reach;
+}
+
+struct Bracket {
+  double lo, hi;
+  PairIds hiPairs;  // the pairs interpenetrating at hi
+};
+
+struct Found {
+  double time;
+  TocStop stop;
+};
+
+Found bisect(Search& s, Bracket br) {
+  while (s.tests < kMaxTimeOfContactIterations) {
+    if (br.hi - br.lo < kTimeTolerance) return {br.lo, TocStop::TimeTolerance};
+    const double t = 0.5 * (br.lo + br.hi);
+    const IntersectionResult r = s.statusAt(t);
+    if (r.status == Status::Interpenetrating) {
+      br.hi = t;
+      br.hiPairs = interpenetratingPairs(r);
+    } else if (allInContact(r, br.hiPairs)) {
+      return {t, TocStop::Contact};
+    } else {
+      br.lo = t;
+    }
+  }
+  return {br.lo, TocStop::IterationLimit};
+}
+
+Found regulaFalsi(Search& s, Bracket br) {
+  const double reach = separationReach(s.db, br.hiPairs);
+  const double target = kRootDistanceFraction * s.db.tolerance;
+  s.db.setTime(br.hi);
+  double sHi = signedSeparation(s, br.hiPairs, reach);
+  s.db.setTime(br.lo);
+  double sLo = signedSeparation(s, br.hiPairs, reach);
+  int kept = 0;  // +1: lo moved last time, -1: hi moved (Illinois: halve the stale end)
+  // A state in contact past the root, returned if the bracket closes before reaching
+  // the target (its pairs touch, nothing interpenetrates).
+  std::optional<double> fallback;
+  while (s.tests < kMaxTimeOfContactIterations) {
+    if (br.hi - br.lo < kTimeTolerance) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
+    double t = br.lo + sLo / (sLo - sHi) * (br.hi - br.lo);
+    // A guess within this fraction of the bracket from either end makes little progress
+    // (regula falsi's one-sided creep): bisect instead.
+    constexpr double kStallFraction = 1e-3;
+    const double margin = kStallFraction * (br.hi - br.lo);
+    if (!(t > br.lo + margin && t < br.hi - margin)) t = 0.5 * (br.lo + br.hi);
+    const IntersectionResult r = s.statusAt(t);
+    if (r.status == Status::Interpenetrating) br.hiPairs = interpenetratingPairs(r);
+    const double sT = signedSeparation(s, br.hiPairs, reach);
+    if (std::abs(sT) <= target && allInContact(r, br.hiPairs)) return {t, TocStop::Contact};
+    // Past the root (interpenetrating, or inside the band by more than the target): the
+    // new upper end. The state stays acceptable as a fallback only while not interpenetrating.
+    if (sT < 0 || r.status == Status::Interpenetrating) {
+      if (r.status != Status::Interpenetrating && allInContact(r, br.hiPairs)) fallback = t;
+      br.hi = t;
+      sHi = sT;
+      if (kept == -1) sLo *= 0.5;
+      kept = -1;
+      continue;
+    }
+    br.lo = t;
+    sLo = sT;
+    if (kept == 1) sHi *= 0.5;
+    kept = 1;
+  }
+  return {fallback.value_or(br.lo), TocStop::IterationLimit};
+}
+
+[[noreturn]] void reportInitialInterpenetration(const ObjectDatabase& db, const IntersectionResult& r) {
+  std::string names;
+  for (const PairResult& p : r.pairs)
+    if (p.status == Status::Interpenetrating)
+      names += (names.empty() ? "" : ", ") + ("\"" + db.objects[p.a].name + "\" and \"" + db.objects[p.b].name + "\"");
+  throw InitialInterpenetration("objects interpenetrate at the start of the interval: " + names);
+}
+
+}  // namespace
+
+TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options) {
+  Search s{db, {}, 0};
+  TocResult result;
+  result.subintervals = subintervalsAgainstTunnelling(db);
+
+  // Test the ends of the sub-intervals in order until one interpenetrates.
+  std::optional<Bracket> bracket;
+  IntersectionResult atStart;  // the state at the bracket's start, once tested
+  for (int k = 1; k <= result.subintervals && !bracket; ++k) {
+    const double t = static_cast<double>(k) / result.subintervals;
+    IntersectionResult r = s.statusAt(t);
+    if (r.status == Status::Interpenetrating)
+      bracket = Bracket{static_cast<double>(k - 1) / result.subintervals, t, interpenetratingPairs(r)};
+    else
+      atStart = std::move(r);
+  }
+
+  Found found{1.0, TocStop::NoInterpenetration};
+  if (bracket) {
+    if (bracket->lo == 0.0) {  // later starts were tested as the end of the previous sub-interval
+      atStart = s.statusAt(0.0);
+      if (atStart.status == Status::Interpenetrating) reportInitialInterpenetration(db, atStart);
+    }
+    if (allInContact(atStart, bracket->hiPairs)) found = {bracket->lo, TocStop::Contact};  // already touching
+    else if (options.method == TocMethod::Bisection) found = bisect(s, *bracket);
+    else found = regulaFalsi(s, *bracket);
+  }
+
+  db.setTime(found.time);
+  const IntersectionResult final = test4Intersection(db, s.ws);
+  ++s.tests;
+  result.time = found.time;
+  result.status = final.status;
+  result.pairs = final.pairs;
+  result.iterations = s.tests;
+  result.stoppedBy = found.stop;
+  return result;
+}
+
+std::string toString(TocMethod method) {
+  return method == TocMethod::Bisection ? "bisection" : "regula-falsi";
+}
+
+std::string toString(TocStop stop) {
+  switch (stop) {
+    case TocStop::NoInterpenetration: return "no-interpenetration";
+    case TocStop::Contact: return "contact";
+    case TocStop::TimeTolerance: return "time-tolerance";
+    case TocStop::IterationLimit: return "iteration-limit";
+  }
+  return "?";
+}
+
+}  // namespace polysim::collision

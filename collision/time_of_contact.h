@@ -1,0 +1,76 @@
+#pragma once
+// collisionDetect(): the seed's search for the time of "just contact" in an interval.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "collision/intersection.h"
+#include "collision/object.h"
+
+namespace polysim::collision {
+
+/// How the time of contact is guessed once an interval is known to hold it.
+enum class TocMethod {
+  /// The seed's method: the middle of the bracket, until the state is contact.
+  Bisection,
+  /// Regula falsi (Illinois variant) on the signed separation of the pairs that
+  /// interpenetrate (distance apart, minus depth inside), with a bisection step whenever
+  /// it stalls; aims at the exact touching time.
+  RegulaFalsi,
+};
+
+/// Why collisionDetect() returned.
+enum class TocStop {
+  NoInterpenetration,  // nothing interpenetrated up to t = 1: returned t = 1
+  Contact,             // found a state of just contact before the interpenetration
+  TimeTolerance,       // the bracket shrank below kTimeTolerance: returned its start
+  IterationLimit,      // kMaxTimeOfContactIterations tests made: returned the bracket's start
+};
+
+struct TocOptions {
+  TocMethod method = TocMethod::Bisection;
+};
+
+struct TocResult {
+  /// The returned time in [0, 1]; the database is left at this time.
+  double time = 1.0;
+  /// Contact or separate, never interpenetrating.
+  Status status = Status::Separate;
+  /// The pairs that are not separate at `time`, with their contacts.
+  std::vector<PairResult> pairs;
+  /// Intersection tests made (each setTime + test counts one).
+  int iterations = 0;
+  /// Sub-intervals the interval was split into against tunnelling (1: none).
+  int subintervals = 1;
+  TocStop stoppedBy = TocStop::NoInterpenetration;
+};
+
+/// The database interpenetrates at t = 0; what() names the pairs.
+class InitialInterpenetration : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Finds the time of just contact in the interval [0, 1] (the seed's collisionDetect).
+///
+/// Expects every object at its t = 1 pose; moving objects have ctrans set. Tests t = 1;
+/// when nothing interpenetrates, returns t = 1 with the contacts there. Otherwise sets
+/// the database to guessed times (bisection or regula falsi) until the state is contact
+/// within the tolerance band and no pair interpenetrates, and returns that time.
+///
+/// Tunnelling: when the objects' motion bounds (ObjNode::motionBound) let a pair move
+/// farther than kTunnelingSafety times the thinner one's thickness, the interval is first
+/// split into sub-intervals tested in order, so an object cannot pass through another
+/// between two tests. Guaranteed only when the motion bounds hold (they must cover
+/// rotation: angle times the farthest vertex's distance from the rotation centre) and
+/// the split stays within kMaxSubintervals; contacts shorter than a sub-interval that
+/// begin and end inside it (a glancing touch) can still be missed.
+///
+/// Throws InitialInterpenetration if the database interpenetrates at t = 0.
+TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options = {});
+
+std::string toString(TocMethod method);
+std::string toString(TocStop stop);
+
+}  // namespace polysim::collision
