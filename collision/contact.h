@@ -42,7 +42,8 @@ struct PairResult {
   /// The contacts, each reported once; empty when the pair interpenetrates (contact
   /// geometry is not meaningful then) or is separate.
   std::vector<Contact> contacts;
-  /// For an interpenetrating pair, the deepest interpenetration found (m); 0 otherwise.
+  /// For an interpenetrating pair, the deepest interpenetration found (m; a lower bound
+  /// when the test was asked for no contacts); 0 otherwise.
   double depth = 0.0;
 };
 

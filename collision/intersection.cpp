@@ -32,9 +32,10 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
       result.depth = std::max(result.depth, o.depth);
     }
     touching = touching || o.status == Status::Contact;
-    return !(options.stopAtInterpenetration && result.status == Status::Interpenetrating);
+    // Without contacts there is nothing more to learn about an interpenetrating pair.
+    return !(!options.contacts && result.status == Status::Interpenetrating);
   };
-  if (options.stopAtInterpenetration && !options.contacts) {
+  if (!options.contacts) {
     // Only the verdict is wanted: judge pairs as the descent finds them (a pair may be
     // judged twice) and stop at the first interpenetration.
     long visited = 0;

@@ -11,7 +11,9 @@
 namespace polysim::collision {
 
 struct IntersectionOptions {
-  /// Gather the contact geometry of pairs in contact (points, lines, areas).
+  /// Gather the contact geometry of pairs in contact (points, lines, areas). Without
+  /// it, a pair's test stops at its first interpenetrating polygon pair (its depth is
+  /// then a lower bound).
   bool contacts = true;
   /// Return as soon as one pair interpenetrates (its depth is then a lower bound), for
   /// callers that only need the verdict, such as collisionDetect()'s bisection.

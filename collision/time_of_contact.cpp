@@ -67,7 +67,8 @@ int subintervalsAgainstTunnelling(const ObjectDatabase& db) {
 }
 
 // Signed separation of the given pairs at the current state: the least over them of the
-// distance apart (at most `reach`), or minus the deepest penetration when one goes inside.
+// distance apart, or minus the deepest penetration when one goes inside; clamped to
+// [-reach, reach], where the value is only a bound.
 double signedSeparation(Search& s, const PairIds& ids, double reach) {
   double least = reach;
   for (const auto& [a, b] : ids) {
@@ -86,24 +87,12 @@ double signedSeparation(Search& s, const PairIds& ids, double reach) {
       const double d = penetrationDepth(p, q, s.db.tolerance, s.ws.scratch);
       if (d > 0.0) depth = std::max(depth, d);
       else if (depth == 0.0) distance = std::min(distance, polygonDistance(p, q, s.ws.scratch));
-      return true;
+      return depth < reach;  // deeper than the reach is only known to be deep
     });
+    depth = std::min(depth, reach);
     least = std::min(least, depth > 0.0 ? -depth : distance);
   }
   return least;
-}
-
-// How far the pairs could come towards each other over the whole interval: the reach of
-// the separation measure (a separation beyond it is reported as the reach).
-double separationReach(const ObjectDatabase& db, const PairIds& ids) {
-  double reach = 10 * db.tolerance;
-  for (const auto& [a, b] : ids) {
-    double motion = db.objects[a].motionBound + db.objects[b].motionBound;
-    if (motion <= 0.0)
-      motion = std::min(db.objects[a].grid->container().sizes().norm(), db.objects[b].grid->container().sizes().norm());
-    reach = std::max(reach, motion);
-  }
-  return reach;
 }
 
 struct Bracket {
@@ -134,7 +123,7 @@ Found bisect(Search& s, Bracket br) {
 }
 
 Found regulaFalsi(Search& s, Bracket br) {
-  const double reach = separationReach(s.db, br.hiPairs);
+  const double reach = kSeparationReach * s.db.tolerance;
   const double target = kRootDistanceFraction * s.db.tolerance;
   s.db.setTime(br.hi);
   double sHi = signedSeparation(s, br.hiPairs, reach);
@@ -147,11 +136,12 @@ Found regulaFalsi(Search& s, Bracket br) {
   while (s.tests < kMaxTimeOfContactIterations) {
     if (br.hi - br.lo < kTimeTolerance) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
     double t = br.lo + sLo / (sLo - sHi) * (br.hi - br.lo);
-    // A guess within this fraction of the bracket from either end makes little progress
-    // (regula falsi's one-sided creep): bisect instead.
+    // Bisect while either end's separation is beyond the reach (only a bound), or
+    // when the guess falls within this fraction of the bracket from either end (regula
+    // falsi's one-sided creep).
     constexpr double kStallFraction = 1e-3;
     const double margin = kStallFraction * (br.hi - br.lo);
-    if (!(t > br.lo + margin && t < br.hi - margin)) t = 0.5 * (br.lo + br.hi);
+    if (sLo >= reach || sHi <= -reach || !(t > br.lo + margin && t < br.hi - margin)) t = 0.5 * (br.lo + br.hi);
     const IntersectionResult r = s.statusAt(t);
     if (r.status == Status::Interpenetrating) br.hiPairs = interpenetratingPairs(r);
     const double sT = signedSeparation(s, br.hiPairs, reach);

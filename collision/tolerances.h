@@ -56,6 +56,11 @@ inline constexpr double kTimeTolerance = 1e-9;
 /// exact touching time that the time error is this distance over the approach speed.
 inline constexpr double kRootDistanceFraction = 1e-3;
 
+/// How far (in contact tolerances) regula falsi measures separations; beyond it a
+/// distance is only known to be large, and a bisection step is taken instead. Small, so
+/// that measuring touches only the polygons near the contact.
+inline constexpr double kSeparationReach = 64.0;
+
 /// Most intersection tests one collisionDetect() call may make while refining, a guard
 /// against non-convergence (bisection needs log2(1/kTimeTolerance) = 30).
 inline constexpr int kMaxTimeOfContactIterations = 100;
