@@ -1,0 +1,148 @@
+#include "dynamics/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynamics/settings.h"
+
+namespace polysim::dynamics {
+namespace {
+
+// A contact prepared for the sweeps: lever arms, effective masses, target, impulses.
+struct Row {
+  RigidBody* a;
+  RigidBody* b;
+  Eigen::Vector3d point, normal, tangent1, tangent2;
+  double normalMass = 0, tangentMass1 = 0, tangentMass2 = 0;  // kg: 1 / (J M^-1 J^T)
+  double target = 0;                                          // m/s, least normal velocity
+  double restitution = 0;                                     // 0 unless the contact bounces
+  double friction = 0;
+  double normalImpulse = 0;                                   // accumulated, N s
+  Eigen::Vector2d frictionImpulse = Eigen::Vector2d::Zero();  // accumulated, N s
+};
+
+Eigen::Vector3d relativeVelocity(const Row& r) { return r.a->velocityAt(r.point) - r.b->velocityAt(r.point); }
+
+// 1 / (n . (M_a^-1 + M_b^-1) n) for a unit direction n at the contact point.
+double effectiveMass(const Row& r, const Eigen::Vector3d& n) {
+  double k = r.a->inverseMass + r.b->inverseMass;
+  for (const RigidBody* body : {r.a, r.b}) {
+    if (body->isStatic) continue;
+    const Eigen::Vector3d arm = r.point - body->centerOfMass();
+    k += n.dot((body->inverseInertiaWorld() * arm.cross(n)).cross(arm));
+  }
+  return k > 0 ? 1.0 / k : 0.0;
+}
+
+void applyPair(Row& r, const Eigen::Vector3d& J) {
+  r.a->applyImpulse(J, r.point);
+  r.b->applyImpulse(-J, r.point);
+}
+
+// The bodies the rows touch, each once (static ones excluded).
+std::vector<RigidBody*> movingBodies(const std::vector<Row>& rows) {
+  std::vector<RigidBody*> bodies;
+  for (const Row& r : rows)
+    for (RigidBody* b : {r.a, r.b})
+      if (!b->isStatic && std::find(bodies.begin(), bodies.end(), b) == bodies.end()) bodies.push_back(b);
+  return bodies;
+}
+
+double kineticEnergy(const std::vector<RigidBody*>& bodies) {
+  double e = 0.0;
+  for (const RigidBody* b : bodies) e += b->kineticEnergy();
+  return e;
+}
+
+// Poisson restitution: each bouncing contact pushes apart again with e times the impulse
+// that stopped it. With friction that rebound could end with more kinetic energy than
+// the bodies had before the solve; energy is quadratic in the rebound's scale alpha, so
+// alpha is cut to the largest value in [0, 1] that keeps it at most `energyBefore`.
+void applyRestitution(std::vector<Row>& rows, double energyBefore) {
+  if (std::none_of(rows.begin(), rows.end(), [](const Row& r) { return r.restitution > 0; })) return;
+  const std::vector<RigidBody*> bodies = movingBodies(rows);
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> compressed, delta;
+  for (const RigidBody* b : bodies) compressed.emplace_back(b->velocity, b->angularVelocity);
+  const double e0 = kineticEnergy(bodies);
+  for (Row& r : rows)
+    if (r.restitution > 0) applyPair(r, r.restitution * r.normalImpulse * r.normal);
+  const double e1 = kineticEnergy(bodies);
+  for (size_t i = 0; i < bodies.size(); ++i)
+    delta.emplace_back(bodies[i]->velocity - compressed[i].first, bodies[i]->angularVelocity - compressed[i].second);
+  if (e1 <= energyBefore) return;
+  auto setScale = [&](double alpha) {
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      bodies[i]->velocity = compressed[i].first + alpha * delta[i].first;
+      bodies[i]->angularVelocity = compressed[i].second + alpha * delta[i].second;
+    }
+  };
+  setScale(-1.0);
+  const double eMinus = kineticEnergy(bodies);
+  const double a = 0.5 * (e1 + eMinus) - e0, b = 0.5 * (e1 - eMinus);  // E(alpha) = e0 + b alpha + a alpha^2
+  const double c = e0 - energyBefore;                                     // <= 0: compression dissipates
+  const double alpha = a > 0 ? (-b + std::sqrt(std::max(0.0, b * b - 4 * a * c))) / (2 * a) : 0.0;
+  setScale(std::clamp(alpha, 0.0, 1.0));
+}
+
+}  // namespace
+
+SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<ContactPoint>& contacts, double dt) {
+  std::vector<Row> rows;
+  rows.reserve(contacts.size());
+  for (const ContactPoint& c : contacts) {
+    Row r;
+    r.a = &bodies[c.a];
+    r.b = &bodies[c.b];
+    if (r.a->isStatic && r.b->isStatic) continue;  // static pairs cost nothing
+    r.point = c.point;
+    r.normal = c.normal;
+    r.friction = c.friction;
+    r.normalMass = effectiveMass(r, r.normal);
+    const double approach = r.normal.dot(relativeVelocity(r));
+    if (approach < -kBounceThreshold) r.restitution = c.restitution;
+    r.target = -std::max(c.separation, 0.0) / dt;
+    if (r.friction > 0) {
+      r.tangent1 = r.normal.unitOrthogonal();
+      r.tangent2 = r.normal.cross(r.tangent1);
+      r.tangentMass1 = effectiveMass(r, r.tangent1);
+      r.tangentMass2 = effectiveMass(r, r.tangent2);
+    }
+    rows.push_back(r);
+  }
+
+  const double energyBefore = kineticEnergy(movingBodies(rows));
+  SolveStats stats;
+  while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
+    ++stats.iterations;
+    double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
+    for (Row& r : rows) {
+      const double lighter = std::max(r.a->inverseMass, r.b->inverseMass);
+      if (r.friction > 0) {
+        // Friction first, clamped to the disk of the current normal impulse.
+        const Eigen::Vector3d v = relativeVelocity(r);
+        const Eigen::Vector2d old = r.frictionImpulse;
+        Eigen::Vector2d wanted =
+            old - Eigen::Vector2d(r.tangentMass1 * r.tangent1.dot(v), r.tangentMass2 * r.tangent2.dot(v));
+        const double limit = r.friction * r.normalImpulse;
+        if (wanted.norm() > limit) wanted *= limit / wanted.norm();
+        r.frictionImpulse = wanted;
+        const Eigen::Vector2d d = wanted - old;
+        applyPair(r, d.x() * r.tangent1 + d.y() * r.tangent2);
+        largestChange = std::max(largestChange, d.norm() * lighter);
+      }
+      const double vn = r.normal.dot(relativeVelocity(r));
+      const double old = r.normalImpulse;
+      r.normalImpulse = std::max(0.0, old - r.normalMass * (vn - r.target));
+      applyPair(r, (r.normalImpulse - old) * r.normal);
+      largestChange = std::max(largestChange, std::abs(r.normalImpulse - old) * lighter);
+    }
+    if (largestChange < kSolverVelocityTolerance) {
+      stats.converged = true;
+      break;
+    }
+  }
+  applyRestitution(rows, energyBefore);
+  return stats;
+}
+
+}  // namespace polysim::dynamics

@@ -1,0 +1,40 @@
+#pragma once
+// Contact response by impulses: sequential impulses with accumulated, clamped normal and
+// friction impulses (Catto, "Iterative Dynamics with Temporal Coherence", 2005), solved
+// for all contacts together.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "dynamics/rigid_body.h"
+
+namespace polysim::dynamics {
+
+/// One contact point between bodies a and b, as plain data.
+struct ContactPoint {
+  int a = -1, b = -1;                                  // indices into the body array
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();     // m, world
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // unit, world, from b towards a
+  double separation = 0.0;                             // m: gap (> 0) or overlap (< 0)
+  double restitution = 0.0;                            // the pair's coefficient
+  double friction = 0.0;                               // the pair's Coulomb coefficient
+};
+
+struct SolveStats {
+  int iterations = 0;        // sweeps made
+  bool converged = false;    // stopped on kSolverVelocityTolerance, not the sweep limit
+};
+
+/// Changes the bodies' velocities so that no contact approaches: every contact ends with
+/// relative normal velocity >= its target (0 at rest; -gap/dt for a contact with a gap,
+/// which may close within the step), normal impulses >= 0, friction impulses within the
+/// Coulomb disk mu * normal impulse (sticking while inside it, sliding on its rim).
+/// Restitution follows Poisson's hypothesis: after that compression solve, each contact
+/// that approached faster than kBounceThreshold gets e times its compression impulse
+/// more (frictionless, that cannot add energy for e <= 1: dE = (e^2 - 1)/2 P'AP); with
+/// friction the rebound is scaled down where needed so that kinetic energy never rises.
+/// `dt` (s) is the time to the next contact detection. Static bodies are never changed;
+/// contacts with zero friction skip all friction work.
+SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<ContactPoint>& contacts, double dt);
+
+}  // namespace polysim::dynamics

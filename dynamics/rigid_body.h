@@ -1,0 +1,44 @@
+#pragma once
+// A rigid body's state: pose of its frame, velocities at its centre of mass, and mass.
+
+#include <Eigen/Geometry>
+
+#include "dynamics/mass_properties.h"
+
+namespace polysim::dynamics {
+
+struct RigidBody {
+  /// World pose of the body's frame (the scene's position and orientation); the centre
+  /// of mass is at centerOfMassLocal in that frame.
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  /// Velocity of the centre of mass (m/s) and angular velocity (rad/s), both world.
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();
+
+  Eigen::Vector3d centerOfMassLocal = Eigen::Vector3d::Zero();  // m, body frame
+  double mass = 0.0;                                            // kg; 0 for static
+  double inverseMass = 0.0;                                     // 1/kg; 0 for static
+  Eigen::Matrix3d inertiaLocal = Eigen::Matrix3d::Zero();       // kg m^2, about the centre of mass, body axes
+  Eigen::Matrix3d inverseInertiaLocal = Eigen::Matrix3d::Zero();
+  bool isStatic = false;
+
+  /// A dynamic body with the given mass properties (mesh frame = body frame).
+  static RigidBody dynamic(const MassProperties& props);
+  /// A static body: infinite mass, never moves.
+  static RigidBody fixed();
+
+  Eigen::Vector3d centerOfMass() const { return position + orientation * centerOfMassLocal; }
+  Eigen::Matrix3d inverseInertiaWorld() const;
+  /// Velocity (m/s, world) of the body's material point at world point p.
+  Eigen::Vector3d velocityAt(const Eigen::Vector3d& p) const {
+    return velocity + angularVelocity.cross(p - centerOfMass());
+  }
+  /// Applies impulse J (N s, world) at world point p.
+  void applyImpulse(const Eigen::Vector3d& J, const Eigen::Vector3d& p);
+  /// Kinetic energy (J).
+  double kineticEnergy() const;
+  Eigen::Isometry3d pose() const;
+};
+
+}  // namespace polysim::dynamics

@@ -1,0 +1,174 @@
+// The integrator and contact response against analytic answers. Contacts come from a
+// small box-on-plane generator here, so that these tests need no collision module.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "collision/shapes.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/integrator.h"
+#include "tests/test_support.h"
+
+namespace polysim::dynamics {
+namespace {
+
+using V3 = Eigen::Vector3d;
+constexpr double g = 9.81;
+
+RigidBody unitBox(double mass) {
+  const collision::MeshData box = collision::makeBox(V3(1, 1, 1));
+  return RigidBody::dynamic(withMass(computeMassProperties(box.vertices, box.faces, 1.0), mass));
+}
+
+TEST(Integrator, FreeFallFollowsTheDiscreteScheme) {
+  for (double dt : {1.0 / 60, 1.0 / 240, 1.0 / 1000}) {
+    RigidBody b = unitBox(1.0);
+    b.position = V3(0, 0, 10);
+    b.velocity = V3(0.5, 0, 2.0);
+    const int n = static_cast<int>(std::round(1.0 / dt));
+    for (int k = 0; k < n; ++k) {
+      integrateVelocity(b, V3(0, 0, -g), dt);
+      advancePose(b, dt);
+    }
+    // Semi-implicit Euler: v_k = v0 - g k dt, z_n = z0 + v0 n dt - g dt^2 n (n + 1) / 2.
+    EXPECT_NEAR(b.position.z(), 10 + 2.0 * n * dt - g * dt * dt * n * (n + 1) / 2, 1e-10) << dt;
+    EXPECT_NEAR(b.position.x(), 0.5 * n * dt, 1e-12);
+    EXPECT_NEAR(b.velocity.z(), 2.0 - g * n * dt, 1e-10);
+  }
+}
+
+TEST(Integrator, PoseAfterIsThePathTheStepTakes) {
+  RigidBody b = unitBox(1.0);
+  b.centerOfMassLocal = V3(0.1, -0.2, 0.3);  // a frame origin away from the centre of mass
+  b.velocity = V3(1, 2, 3);
+  b.angularVelocity = V3(0.3, -2, 1);
+  const double dt = 0.01;
+  const Eigen::Isometry3d half = poseAfter(b, 0.5 * dt);
+  advancePose(b, 0.5 * dt);
+  EXPECT_TRUE(test::near(b.position, half.translation(), 1e-14));
+  advancePose(b, 0.5 * dt);
+  RigidBody c = unitBox(1.0);
+  c.centerOfMassLocal = V3(0.1, -0.2, 0.3);
+  c.velocity = V3(1, 2, 3);
+  c.angularVelocity = V3(0.3, -2, 1);
+  advancePose(c, dt);
+  EXPECT_TRUE(test::near(b.position, c.position, 1e-14));
+  EXPECT_NEAR(b.orientation.angularDistance(c.orientation), 0.0, 1e-14);
+  // The centre of mass moves in a straight line.
+  EXPECT_TRUE(test::near(c.centerOfMass(), V3(0.1, -0.2, 0.3) + dt * V3(1, 2, 3), 1e-12));
+}
+
+TEST(ContactSolver, ElasticHeadOnCollisionExchangesVelocities) {
+  std::vector<RigidBody> bodies = {unitBox(2.0), unitBox(2.0)};
+  bodies[0].position = V3(-0.5, 0, 0);
+  bodies[1].position = V3(0.5, 0, 0);
+  bodies[0].velocity = V3(3, 0, 0);
+  bodies[1].velocity = V3(-1, 0, 0);
+  // Four points on the touching faces, normal from body 1 towards body 0 (-x).
+  std::vector<ContactPoint> contacts;
+  for (double y : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5}) contacts.push_back({0, 1, V3(0, y, z), V3(-1, 0, 0), 0.0, 1.0, 0.0});
+  solveContacts(bodies, contacts, 1.0 / 240);
+  EXPECT_NEAR(bodies[0].velocity.x(), -1.0, 1e-8);
+  EXPECT_NEAR(bodies[1].velocity.x(), 3.0, 1e-8);
+  EXPECT_NEAR(bodies[0].angularVelocity.norm(), 0.0, 1e-8);
+}
+
+TEST(ContactSolver, InelasticHeadOnCollisionKeepsMomentum) {
+  std::vector<RigidBody> bodies = {unitBox(1.0), unitBox(3.0)};
+  bodies[0].position = V3(-0.5, 0, 0);
+  bodies[1].position = V3(0.5, 0, 0);
+  bodies[0].velocity = V3(4, 0, 0);
+  std::vector<ContactPoint> contacts;
+  for (double y : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5}) contacts.push_back({0, 1, V3(0, y, z), V3(-1, 0, 0), 0.0, 0.0, 0.0});
+  solveContacts(bodies, contacts, 1.0 / 240);
+  EXPECT_NEAR(bodies[0].velocity.x(), 1.0, 1e-8);  // common velocity 4 * 1 / (1 + 3)
+  EXPECT_NEAR(bodies[1].velocity.x(), 1.0, 1e-8);
+  EXPECT_NEAR(1.0 * bodies[0].velocity.x() + 3.0 * bodies[1].velocity.x(), 4.0, 1e-9);
+}
+
+TEST(ContactSolver, KineticEnergyNeverIncreasesOnRandomContacts) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int changed = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<RigidBody> bodies = {unitBox(1 + u(rng) * 0.5 + 0.5), unitBox(1 + u(rng) * 0.5 + 0.5)};
+    if (trial % 3 == 0) bodies[1] = RigidBody::fixed();
+    for (RigidBody& b : bodies) {
+      if (b.isStatic) continue;
+      b.position = V3(u(rng), u(rng), u(rng));
+      b.orientation = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
+      b.velocity = 3 * V3(u(rng), u(rng), u(rng));
+      b.angularVelocity = 3 * V3(u(rng), u(rng), u(rng));
+    }
+    // One contact plane (a random normal through a random point), with 1 to 4 points on
+    // it, as a face, an edge or a vertex of one body touching the other would give.
+    std::vector<ContactPoint> contacts;
+    const V3 normal = V3(u(rng), u(rng), u(rng)).normalized();
+    const V3 centre(u(rng), u(rng), u(rng));
+    const V3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+    const double e = 0.5 * (u(rng) + 1), mu = 0.5 * (u(rng) + 1);
+    const int n = 1 + trial % 4;
+    for (int k = 0; k < n; ++k)
+      contacts.push_back({0, 1, centre + 0.5 * u(rng) * t1 + 0.5 * u(rng) * t2, normal, 0.0, e, mu});
+    const double before = bodies[0].kineticEnergy() + bodies[1].kineticEnergy();
+    solveContacts(bodies, contacts, 1.0 / 240);
+    const double after = bodies[0].kineticEnergy() + bodies[1].kineticEnergy();
+    EXPECT_LE(after, before * (1 + 1e-9) + 1e-12) << "trial " << trial;
+    changed += after < before - 1e-9;
+  }
+  EXPECT_GT(changed, 100);  // the contacts did act
+}
+
+// Contacts of a box's corners within tol of a static plane (normal n through the origin).
+std::vector<ContactPoint> cornersOnPlane(const std::vector<RigidBody>& bodies, const V3& n, double mu) {
+  std::vector<ContactPoint> contacts;
+  const Eigen::Isometry3d X = bodies[0].pose();
+  for (int i = 0; i < 8; ++i) {
+    const V3 corner = X * V3((i & 1) ? 0.5 : -0.5, (i & 2) ? 0.5 : -0.5, (i & 4) ? 0.5 : -0.5);
+    const double d = n.dot(corner);
+    if (d < 1e-4) contacts.push_back({0, 1, corner, n, d, 0.0, mu});
+  }
+  return contacts;
+}
+
+// Runs a unit box on a plane through the origin for `seconds`; returns its displacement.
+V3 runOnPlane(const V3& n, double mu, const V3& v0, double seconds, double dt) {
+  std::vector<RigidBody> bodies = {unitBox(1.0), RigidBody::fixed()};
+  bodies[0].orientation = Eigen::Quaterniond::FromTwoVectors(V3::UnitZ(), n);
+  bodies[0].position = 0.5 * n;
+  bodies[0].velocity = v0;
+  const V3 start = bodies[0].position;
+  for (int k = 0; k < static_cast<int>(std::round(seconds / dt)); ++k) {
+    integrateVelocity(bodies[0], V3(0, 0, -g), dt);
+    solveContacts(bodies, cornersOnPlane(bodies, n, mu), dt);
+    advancePose(bodies[0], dt);
+  }
+  return bodies[0].position - start;
+}
+
+TEST(ContactSolver, SlidingBoxStopsAfterVSquaredOverTwoMuG) {
+  const double v = 3.0, mu = 0.5, dt = 1.0 / 240;
+  const V3 d = runOnPlane(V3::UnitZ(), mu, V3(v, 0, 0), 2.0, dt);
+  EXPECT_NEAR(d.x(), v * v / (2 * mu * g), 0.01 * v * v / (2 * mu * g));
+  EXPECT_NEAR(d.z(), 0.0, 1e-9);  // no sinking, no hopping
+}
+
+TEST(ContactSolver, BoxSlidesDownASteepSlopeAndSticksOnAShallowOne) {
+  const double angle = M_PI / 6, dt = 1.0 / 240, t = 1.0;
+  const V3 n(-std::sin(angle), 0, std::cos(angle));  // the slope rises towards +x
+  const V3 downhill(-std::cos(angle), 0, -std::sin(angle));
+  const double expected = 0.5 * g * (std::sin(angle) - 0.3 * std::cos(angle)) * t * t;
+  EXPECT_NEAR(runOnPlane(n, 0.3, V3::Zero(), t, dt).dot(downhill), expected, 0.01 * expected);
+  EXPECT_NEAR(runOnPlane(n, 0.7, V3::Zero(), t, dt).norm(), 0.0, 1e-9);
+}
+
+TEST(ContactSolver, BoxRestingOnTheFloorStaysExactlyAtRest) {
+  const V3 d = runOnPlane(V3::UnitZ(), 0.5, V3::Zero(), 10.0, 1.0 / 240);
+  EXPECT_LT(d.norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace polysim::dynamics
