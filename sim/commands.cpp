@@ -6,6 +6,7 @@
 #include "collision/time_of_contact.h"
 #include "sim/json_output.h"
 #include "sim/kinematic_motion.h"
+#include "sim/run.h"
 #include "sim/scene.h"
 
 namespace polysim::sim {
@@ -24,6 +25,12 @@ int contactsCommand(const std::string& scenePath, std::ostream& out) {
   const collision::ObjectDatabase db = buildObjectDatabase(scene);
   const collision::IntersectionResult r = collision::test4Intersection(db);
   out << intersectionToJson(r, bodyNames(scene)).dump() << "\n";
+  return 0;
+}
+
+int runCommand(const std::string& scenePath, const RunOptions& options, std::ostream& out) {
+  const Scene scene = loadScene(scenePath);
+  out << runScene(scene, options).dump() << "\n";
   return 0;
 }
 

@@ -11,6 +11,9 @@ namespace polysim::sim {
 /// `polysim contacts SCENE`: test4Intersection() on the initial state.
 int contactsCommand(const std::string& scenePath, std::ostream& out);
 
+/// `polysim run SCENE [--duration S] [--dt S] [--log FILE]`: the summary as JSON.
+int runCommand(const std::string& scenePath, const struct RunOptions& options, std::ostream& out);
+
 /// `polysim toc SCENE [--interval T] [--method M]`: collisionDetect() over [0, T] with
 /// every moving body kinematic (constant velocity and angular velocity); T <= 0 means
 /// the scene's dt. `method` is "bisection" or "regula-falsi".

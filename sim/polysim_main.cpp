@@ -2,8 +2,10 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <unistd.h>
 
 #include "sim/commands.h"
+#include "sim/run.h"
 #include "sim/scene.h"
 
 int main(int argc, char** argv) {
@@ -22,9 +24,27 @@ int main(int argc, char** argv) {
   toc->add_option("--method", method, "how the time of contact is guessed")
       ->check(CLI::IsMember({"bisection", "regula-falsi"}));
 
+  polysim::sim::RunOptions runOptions;
+  double runDuration = 0.0, runDt = 0.0;
+  std::string runMethod = "bisection";
+  CLI::App* run = app.add_subcommand("run", "simulate the scene and print a summary");
+  run->add_option("SCENE", scene, "scene file (JSON)")->required();
+  run->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  run->add_option("--dt", runDt, "step in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  run->add_option("--log", runOptions.logPath, "write the step log (JSON Lines) to this file");
+  run->add_option("--method", runMethod, "time-of-contact method")->check(CLI::IsMember({"bisection", "regula-falsi"}));
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (contacts->parsed()) return polysim::sim::contactsCommand(scene, std::cout);
+    if (run->parsed()) {
+      if (runDuration > 0) runOptions.duration = runDuration;
+      if (runDt > 0) runOptions.dt = runDt;
+      runOptions.method = runMethod == "bisection" ? polysim::collision::TocMethod::Bisection
+                                                   : polysim::collision::TocMethod::RegulaFalsi;
+      runOptions.progress = isatty(STDERR_FILENO);
+      return polysim::sim::runCommand(scene, runOptions, std::cout);
+    }
     if (toc->parsed()) return polysim::sim::tocCommand(scene, interval, method, std::cout);
   } catch (const polysim::sim::SceneError& e) {
     std::cerr << e.what() << "\n";

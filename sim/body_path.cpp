@@ -1,0 +1,25 @@
+#include "sim/body_path.h"
+
+#include "dynamics/integrator.h"
+
+namespace polysim::sim {
+
+void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO) {
+  const BodyPath& path = *static_cast<const BodyPath*>(info);
+  X_WO = dynamics::poseAfter(*path.body, s * path.duration);
+}
+
+double pathMotionBound(const dynamics::RigidBody& body, const collision::PolygonMesh& mesh, double duration) {
+  double radius = 0.0;
+  for (const Eigen::Vector3d& v : mesh.vertices()) radius = std::max(radius, (v - body.centerOfMassLocal).norm());
+  return duration * (body.velocity.norm() + body.angularVelocity.norm() * radius);
+}
+
+void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
+                         std::vector<dynamics::ContactPoint>& out) {
+  for (const collision::Contact& c : contacts)
+    for (const Eigen::Vector3d& p : c.points)
+      out.push_back({a, b, p, c.normal, c.separation, material.restitution, material.friction});
+}
+
+}  // namespace polysim::sim

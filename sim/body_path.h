@@ -1,0 +1,39 @@
+#pragma once
+// The bridge from dynamics to collision: a body's path over a sub-step as the seed's
+// ctrans update function, and contacts turned into the dynamics' plain contact points.
+
+#include <vector>
+
+#include "collision/contact.h"
+#include "collision/polygon_mesh.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/rigid_body.h"
+
+namespace polysim::sim {
+
+/// What ctrans needs to place a body at a fraction of a sub-step.
+struct BodyPath {
+  const dynamics::RigidBody* body = nullptr;
+  double duration = 0.0;  // s: the sub-step [0, 1] stands for
+};
+
+/// ctrans: the pose the integrator reaches after s * duration (dynamics::poseAfter).
+void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO);
+
+/// How far any vertex can move along the path (m): |v| T + |w| T r, r the farthest
+/// vertex from the centre of mass.
+double pathMotionBound(const dynamics::RigidBody& body, const collision::PolygonMesh& mesh, double duration);
+
+/// Material of a pair of bodies: the larger restitution, the geometric mean of frictions.
+struct PairMaterial {
+  double restitution = 0.0;
+  double friction = 0.0;
+};
+
+/// The contact points of one pair of bodies (a, b: body indices): every vertex of an
+/// area's polygon, both ends of a line, a point; each with the contact's normal and
+/// separation.
+void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
+                         std::vector<dynamics::ContactPoint>& out);
+
+}  // namespace polysim::sim

@@ -1,0 +1,26 @@
+#pragma once
+// `polysim run`: a whole simulation and its summary (SPEC.md).
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "collision/time_of_contact.h"
+#include "sim/scene.h"
+
+namespace polysim::sim {
+
+struct RunOptions {
+  std::optional<double> duration, dt;  // s; the scene's when not given
+  std::string logPath;                 // empty: no step log
+  collision::TocMethod method = collision::TocMethod::Bisection;
+  bool progress = false;               // a progress bar on stderr
+};
+
+/// Runs the scene and returns SPEC.md's summary: scene, steps, sim_time, wall_time_s,
+/// first_contact_time, max_penetration, energy {initial, final, max_increase}, bodies
+/// (dynamic ones: pose, velocities, at_rest); plus event_limit_steps, the steps that hit
+/// kMaxEventsPerStep.
+nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options);
+
+}  // namespace polysim::sim

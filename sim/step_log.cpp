@@ -1,0 +1,50 @@
+#include "sim/step_log.h"
+
+#include <stdexcept>
+
+#include "sim/json_output.h"
+
+namespace polysim::sim {
+
+nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) {
+  std::vector<std::string> names;
+  for (const BodySpec& b : world.scene().bodies) names.push_back(b.name);
+  nlohmann::ordered_json events = nlohmann::ordered_json::array();
+  for (const StepEvent& e : report.events)
+    events.push_back({{"time", forOutput(e.time)},
+                      {"iterations", e.toc.iterations},
+                      {"stopped_by", collision::toString(e.toc.stoppedBy)},
+                      {"pairs", pairsToJson(e.toc.pairs, names)}});
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < world.bodies().size(); ++i) {
+    const dynamics::RigidBody& b = world.bodies()[i];
+    if (b.isStatic) continue;
+    const Eigen::Quaterniond& q = b.orientation;
+    bodies.push_back({{"name", names[i]},
+                      {"position", toJson(b.position)},
+                      {"orientation", {forOutput(q.w()), forOutput(q.x()), forOutput(q.y()), forOutput(q.z())}},
+                      {"velocity", toJson(b.velocity)},
+                      {"angular_velocity", toJson(b.angularVelocity)}});
+  }
+  nlohmann::ordered_json line;
+  line["step"] = report.step;
+  line["t"] = forOutput(report.time);
+  line["events"] = events;
+  if (report.eventLimitHit) line["event_limit"] = true;
+  line["bodies"] = bodies;
+  line["energy"] = forOutput(world.energy());
+  line["penetration"] = forOutput(report.penetration);
+  line["solver_iterations"] = report.solverIterations;
+  return line;
+}
+
+StepLog::StepLog(const std::string& path) : out_(path, std::ios::trunc) {
+  if (!out_) throw std::runtime_error("cannot write the step log " + path);
+}
+
+void StepLog::write(const World& world, const StepReport& report) {
+  out_ << stepToJson(world, report).dump() << "\n";
+  out_.flush();  // every finished step readable even if the run is interrupted
+}
+
+}  // namespace polysim::sim

@@ -1,0 +1,126 @@
+#include "sim/world.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "collision/intersection.h"
+#include "dynamics/integrator.h"
+#include "dynamics/settings.h"
+
+namespace polysim::sim {
+
+World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), db_(buildObjectDatabase(scene)) {
+  checkInitialState(scene_);
+  tocOptions_.method = method;
+  for (const BodySpec& spec : scene_.bodies) {
+    dynamics::RigidBody body = dynamics::RigidBody::fixed();
+    if (!spec.isStatic) {
+      const auto props = dynamics::computeMassProperties(spec.mesh.vertices, spec.mesh.faces, spec.density.value_or(1000.0));
+      body = dynamics::RigidBody::dynamic(spec.mass ? dynamics::withMass(props, *spec.mass) : props);
+      body.velocity = spec.velocity;
+      body.angularVelocity = spec.angularVelocity;
+    }
+    body.position = spec.position;
+    body.orientation = spec.orientation;
+    bodies_.push_back(body);
+    materials_.push_back({spec.restitution.value_or(scene_.contact.restitution), spec.friction.value_or(scene_.contact.friction)});
+    double size = 0.0;
+    for (const Eigen::Vector3d& v : spec.mesh.vertices) size = std::max(size, (v - body.centerOfMassLocal).norm());
+    sizes_.push_back(size);
+  }
+  paths_.resize(bodies_.size());  // never resized again: the database points into it
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    paths_[i].body = &bodies_[i];
+    db_.objects[i].info = &paths_[i];
+  }
+  collision::IntersectionWorkspace ws;
+  contacts_ = collision::test4Intersection(db_, ws).pairs;
+  if (!contacts_.empty()) firstContact_ = 0.0;
+}
+
+const StepReport& World::step(double dt) {
+  report_ = StepReport{report_.step + 1, 0.0, {}, false, 0.0, 0};
+  integrateVelocities(dt);  // gravity
+  resolveContacts(dt);      // the contacts the step starts with (resting, stacked)
+  double remaining = dt;
+  for (int events = 0; remaining > 0;) {
+    predictMotion(remaining);                                // each body's path over the rest of the step
+    const collision::TocResult toc = detectCollisions();     // back up to the first contact, if any
+    const double elapsed = toc.time * remaining;
+    commitPoses(elapsed);                                    // the bodies move to that state
+    remaining -= elapsed;
+    noteContacts(toc, time_ + (dt - remaining));
+    if (toc.stoppedBy == collision::TocStop::NoInterpenetration) break;
+    report_.events.push_back({time_ + (dt - remaining), toc});
+    if (++events == kMaxEventsPerStep) {                     // rest out the step (see kMaxEventsPerStep)
+      report_.eventLimitHit = true;
+      break;
+    }
+    resolveContacts(remaining);                              // impulses at the contact
+  }
+  time_ += dt;
+  report_.time = time_;
+  return report_;
+}
+
+void World::integrateVelocities(double dt) {
+  for (dynamics::RigidBody& b : bodies_) dynamics::integrateVelocity(b, scene_.gravity, dt);
+}
+
+void World::resolveContacts(double horizon) {
+  std::vector<dynamics::ContactPoint> points;
+  for (const collision::PairResult& pair : contacts_) {
+    const PairMaterial& a = materials_[pair.a];
+    const PairMaterial& b = materials_[pair.b];
+    appendContactPoints(pair.a, pair.b, pair.contacts,
+                        {std::max(a.restitution, b.restitution), std::sqrt(a.friction * b.friction)}, points);
+  }
+  if (points.empty()) return;
+  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon).iterations;
+}
+
+void World::predictMotion(double duration) {
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    collision::ObjNode& node = db_.objects[i];
+    const dynamics::RigidBody& b = bodies_[i];
+    const bool moving = !b.isStatic && (!b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0));
+    node.ctrans = moving ? bodyPathPose : nullptr;  // a body at rest costs no update
+    paths_[i].duration = duration;
+    node.motionBound = moving ? pathMotionBound(b, *node.mesh, duration) : 0.0;
+  }
+}
+
+collision::TocResult World::detectCollisions() {
+  db_.setTime(1.0);  // collisionDetect() starts from the end of the interval
+  return collision::collisionDetect(db_, tocOptions_);
+}
+
+void World::commitPoses(double elapsed) {
+  // The same path and the same product s * duration as ctrans used: the committed poses
+  // are exactly the state collisionDetect() tested.
+  // Bodies without a path did not move (and are not re-derived from their centre of mass).
+  for (size_t i = 0; i < bodies_.size(); ++i)
+    if (db_.objects[i].ctrans) dynamics::advancePose(bodies_[i], elapsed);
+}
+
+void World::noteContacts(const collision::TocResult& toc, double at) {
+  contacts_ = toc.pairs;
+  if (!contacts_.empty() && firstContact_ < 0) firstContact_ = at;
+  for (const collision::PairResult& p : contacts_)
+    for (const collision::Contact& c : p.contacts) report_.penetration = std::max(report_.penetration, -c.separation);
+}
+
+double World::energy() const {
+  double e = 0.0;
+  for (const dynamics::RigidBody& b : bodies_)
+    if (!b.isStatic) e += b.kineticEnergy() - b.mass * scene_.gravity.dot(b.centerOfMass());
+  return e;
+}
+
+bool World::atRest(int i) const {
+  const dynamics::RigidBody& b = bodies_[i];
+  return b.isStatic ||
+         (b.velocity.norm() < dynamics::kRestSpeed && b.angularVelocity.norm() * sizes_[i] < dynamics::kRestSpeed);
+}
+
+}  // namespace polysim::sim

@@ -1,0 +1,77 @@
+#pragma once
+// The step loop: the user's design, a minimal integrator whose every step calls
+// collisionDetect(), backs up to the contact time, resolves the contacts and goes on.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "collision/time_of_contact.h"
+#include "dynamics/rigid_body.h"
+#include "sim/body_path.h"
+#include "sim/scene.h"
+
+namespace polysim::sim {
+
+/// Most contact events (collisionDetect() returning before the end of the remaining
+/// step) handled in one step. A box bouncing ever lower has infinitely many bounces in
+/// finite time; past this bound the rest of the step is spent at rest (bodies keep
+/// their resolved velocities, poses stay), and the step records that it hit the bound.
+inline constexpr int kMaxEventsPerStep = 8;
+
+/// One contact event inside a step.
+struct StepEvent {
+  double time = 0.0;  // s, simulation time of the contact
+  collision::TocResult toc;
+};
+
+/// What happened in one step, for the step log.
+struct StepReport {
+  long step = 0;
+  double time = 0.0;  // s, at the step's end
+  std::vector<StepEvent> events;
+  bool eventLimitHit = false;
+  double penetration = 0.0;  // m, deepest overlap among the committed states
+  int solverIterations = 0;
+};
+
+class World {
+ public:
+  explicit World(const Scene& scene, collision::TocMethod method = collision::TocMethod::Bisection);
+
+  /// Advances the world by the scene's dt (or `dt` when given) and reports the step.
+  const StepReport& step(double dt);
+
+  double time() const { return time_; }
+  const Scene& scene() const { return scene_; }
+  const std::vector<dynamics::RigidBody>& bodies() const { return bodies_; }
+  /// The contacts at the current state (pairs not separate, scene body indices).
+  const std::vector<collision::PairResult>& contacts() const { return contacts_; }
+  /// Kinetic plus gravitational potential energy of the dynamic bodies (J).
+  double energy() const;
+  bool atRest(int body) const;
+  /// The first time a pair was in contact (s), or a negative value if none yet.
+  double firstContactTime() const { return firstContact_; }
+
+ private:
+  void integrateVelocities(double dt);
+  void resolveContacts(double horizon);
+  void predictMotion(double duration);
+  collision::TocResult detectCollisions();
+  void commitPoses(double elapsed);
+  void noteContacts(const collision::TocResult& toc, double at);
+
+  Scene scene_;
+  collision::TocOptions tocOptions_;
+  collision::ObjectDatabase db_;
+  std::vector<dynamics::RigidBody> bodies_;
+  std::vector<BodyPath> paths_;
+  std::vector<PairMaterial> materials_;  // per body: its restitution and friction
+  std::vector<double> sizes_;            // per body: farthest vertex from the centre of mass (m)
+  std::vector<collision::PairResult> contacts_;
+  double time_ = 0.0;
+  double firstContact_ = -1.0;
+  StepReport report_;
+};
+
+}  // namespace polysim::sim
