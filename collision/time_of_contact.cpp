@@ -47,6 +47,14 @@ bool allInContact(const IntersectionResult& r, const PairIds& ids) {
   return true;
 }
 
+// True when no pair of `ids` is in contact in r.
+bool noneInContact(const IntersectionResult& r, const PairIds& ids) {
+  for (const auto& [a, b] : ids)
+    for (const PairResult& p : r.pairs)
+      if (p.a == a && p.b == b && p.status == Status::Contact) return false;
+  return true;
+}
+
 // Into how many sub-intervals the interval must be split so that no pair moves farther
 // than kTunnelingSafety times its thinner object's thickness between two tests.
 int subintervalsAgainstTunnelling(const ObjectDatabase& db) {
@@ -98,7 +106,25 @@ double signedSeparation(Search& s, const PairIds& ids, double reach) {
 struct Bracket {
   double lo, hi;
   PairIds hiPairs;  // the pairs interpenetrating at hi
+  /// False when one of hiPairs already touched at the bracket's start: then "the pair is
+  /// in contact" says nothing about the new touch, and only narrowing the bracket helps.
+  bool fresh = true;
+  /// Largest relative motion (m) of the objects over the whole interval [0, 1].
+  double motion = 0.0;
 };
+
+// True when the bracket is narrow enough that nothing moves more than eps inside it (or
+// below kTimeTolerance when the motion is unknown): its start is then "just contact".
+bool narrowEnough(const Bracket& br, double eps) {
+  if (br.motion > 0.0) return (br.hi - br.lo) * br.motion <= eps;
+  return br.hi - br.lo < kTimeTolerance;
+}
+
+double pairMotion(const ObjectDatabase& db, const PairIds& ids) {
+  double motion = 0.0;
+  for (const auto& [a, b] : ids) motion = std::max(motion, db.objects[a].motionBound + db.objects[b].motionBound);
+  return motion;
+}
 
 struct Found {
   double time;
@@ -107,13 +133,13 @@ struct Found {
 
 Found bisect(Search& s, Bracket br) {
   while (s.tests < kMaxTimeOfContactIterations) {
-    if (br.hi - br.lo < kTimeTolerance) return {br.lo, TocStop::TimeTolerance};
+    if (narrowEnough(br, s.db.tolerance)) return {br.lo, TocStop::TimeTolerance};
     const double t = 0.5 * (br.lo + br.hi);
     const IntersectionResult r = s.statusAt(t);
     if (r.status == Status::Interpenetrating) {
       br.hi = t;
       br.hiPairs = interpenetratingPairs(r);
-    } else if (allInContact(r, br.hiPairs)) {
+    } else if (br.fresh && allInContact(r, br.hiPairs)) {
       return {t, TocStop::Contact};
     } else {
       br.lo = t;
@@ -134,22 +160,24 @@ Found regulaFalsi(Search& s, Bracket br) {
   // the target (its pairs touch, nothing interpenetrates).
   std::optional<double> fallback;
   while (s.tests < kMaxTimeOfContactIterations) {
-    if (br.hi - br.lo < kTimeTolerance) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
+    // A fresh pair is chased to the exact touching time; otherwise the bracket only narrows.
+    const bool narrow = br.fresh ? br.hi - br.lo < kTimeTolerance : narrowEnough(br, s.db.tolerance);
+    if (narrow) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
     double t = br.lo + sLo / (sLo - sHi) * (br.hi - br.lo);
     // Bisect while either end's separation is beyond the reach (only a bound), or
     // when the guess falls within this fraction of the bracket from either end (regula
     // falsi's one-sided creep).
     constexpr double kStallFraction = 1e-3;
     const double margin = kStallFraction * (br.hi - br.lo);
-    if (sLo >= reach || sHi <= -reach || !(t > br.lo + margin && t < br.hi - margin)) t = 0.5 * (br.lo + br.hi);
+    if (!br.fresh || sLo >= reach || sHi <= -reach || !(t > br.lo + margin && t < br.hi - margin)) t = 0.5 * (br.lo + br.hi);
     const IntersectionResult r = s.statusAt(t);
     if (r.status == Status::Interpenetrating) br.hiPairs = interpenetratingPairs(r);
     const double sT = signedSeparation(s, br.hiPairs, reach);
-    if (std::abs(sT) <= target && allInContact(r, br.hiPairs)) return {t, TocStop::Contact};
+    if (br.fresh && std::abs(sT) <= target && allInContact(r, br.hiPairs)) return {t, TocStop::Contact};
     // Past the root (interpenetrating, or inside the band by more than the target): the
     // new upper end. The state stays acceptable as a fallback only while not interpenetrating.
     if (sT < 0 || r.status == Status::Interpenetrating) {
-      if (r.status != Status::Interpenetrating && allInContact(r, br.hiPairs)) fallback = t;
+      if (br.fresh && r.status != Status::Interpenetrating && allInContact(r, br.hiPairs)) fallback = t;
       br.hi = t;
       sHi = sT;
       if (kept == -1) sLo *= 0.5;
@@ -197,9 +225,9 @@ TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options) {
       atStart = s.statusAt(0.0);
       if (atStart.status == Status::Interpenetrating) reportInitialInterpenetration(db, atStart);
     }
-    if (allInContact(atStart, bracket->hiPairs)) found = {bracket->lo, TocStop::Contact};  // already touching
-    else if (options.method == TocMethod::Bisection) found = bisect(s, *bracket);
-    else found = regulaFalsi(s, *bracket);
+    bracket->fresh = noneInContact(atStart, bracket->hiPairs);
+    bracket->motion = pairMotion(db, bracket->hiPairs);
+    found = options.method == TocMethod::Bisection ? bisect(s, *bracket) : regulaFalsi(s, *bracket);
   }
 
   db.setTime(found.time);

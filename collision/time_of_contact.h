@@ -24,7 +24,8 @@ enum class TocMethod {
 enum class TocStop {
   NoInterpenetration,  // nothing interpenetrated up to t = 1: returned t = 1
   Contact,             // found a state of just contact before the interpenetration
-  TimeTolerance,       // the bracket shrank below kTimeTolerance: returned its start
+  TimeTolerance,       // the bracket narrowed until nothing moves more than the contact
+                       // tolerance inside it (kTimeTolerance without motion bounds): returned its start
   IterationLimit,      // kMaxTimeOfContactIterations tests made: returned the bracket's start
 };
 
@@ -57,7 +58,10 @@ class InitialInterpenetration : public std::runtime_error {
 /// Expects every object at its t = 1 pose; moving objects have ctrans set. Tests t = 1;
 /// when nothing interpenetrates, returns t = 1 with the contacts there. Otherwise sets
 /// the database to guessed times (bisection or regula falsi) until the state is contact
-/// within the tolerance band and no pair interpenetrates, and returns that time.
+/// within the tolerance band and no pair interpenetrates, and returns that time. A pair
+/// that already touched at the bracket's start (a box rocking onto another corner)
+/// shows "contact" all along, so for it the bracket is narrowed until no object moves
+/// more than the tolerance inside it, and its start is returned.
 ///
 /// Tunnelling: when the objects' motion bounds (ObjNode::motionBound) let a pair move
 /// farther than kTunnelingSafety times the thinner one's thickness, the interval is first

@@ -209,7 +209,7 @@ TEST_P(TimeOfContact, NeverReturnsAnInterpenetratingStateOnRandomMotions) {
     ASSERT_NE(r.status, Status::Interpenetrating) << "trial " << trial;
     // The database is left at the returned time, and that state really is not interpenetrating.
     EXPECT_NE(test4Intersection(w.db).status, Status::Interpenetrating) << "trial " << trial;
-    contacts += r.stoppedBy == TocStop::Contact;
+    contacts += r.status == Status::Contact;
   }
   EXPECT_GT(contacts, 50);  // most random motions do hit something
 }
