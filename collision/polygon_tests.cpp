@@ -119,10 +119,12 @@ Contact makeContact(ContactType type, const Eigen::Vector3d& normal, double sepa
   return c;
 }
 
-// Face-on-face: both polygons lie within eps of each other's plane, facing each other.
-// Appends the overlap polygon and returns true when it has a real area (wider than eps).
-bool areaContact(const PolygonView& p, const double* dP, const PolygonView& q, double eps,
-                 std::vector<Contact>& out, PolygonScratch& s) {
+// Face-on-face: two faces facing each other whose overlap (p projected on q) lies within
+// eps of both planes at every corner; judged on the overlap, not on the whole faces, so
+// that a box on a wide floor is face-on-face even when slightly tilted. Appends the
+// overlap polygon and returns true when it has a real area (wider than eps).
+bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::vector<Contact>& out,
+                 PolygonScratch& s) {
   const PlaneFrame frame(q.vertices[0], q.plane.normal);
   s.q2.resize(q.size);
   for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
@@ -130,12 +132,20 @@ bool areaContact(const PolygonView& p, const double* dP, const PolygonView& q, d
   for (int k = 0; k < p.size; ++k) s.p2[p.size - 1 - k] = frame.to2d(p.vertices[k]);  // reversed: CCW about q's normal
   const Polygon2 overlap = clipConvex(s.q2, s.p2);
   if (overlap.size() < 3 || signedArea(overlap) <= 0.5 * eps * perimeter(overlap)) return false;
-  double gap = 0.0;
-  for (int i = 0; i < p.size; ++i) gap += dP[i];
-  gap /= p.size;
-  Contact c = makeContact(ContactType::Area, q.plane.normal, gap, {Feature::Kind::Face, p.faceId},
+  // The gap at a corner x of the overlap (on q's plane) is how far p's plane lies above it
+  // along q's normal.
+  const double along = -p.plane.normal.dot(q.plane.normal);
+  double gapSum = 0.0;
+  Contact c = makeContact(ContactType::Area, q.plane.normal, 0.0, {Feature::Kind::Face, p.faceId},
                           {Feature::Kind::Face, q.faceId});
-  for (const Eigen::Vector2d& x : overlap) c.points.push_back(frame.to3d(x) + (0.5 * gap) * q.plane.normal);
+  for (const Eigen::Vector2d& x2 : overlap) {
+    const Eigen::Vector3d x = frame.to3d(x2);
+    const double gap = p.plane.signedDistance(x) / along;
+    if (std::abs(gap) > eps) return false;
+    gapSum += gap;
+    c.points.push_back(x + (0.5 * gap) * q.plane.normal);
+  }
+  c.separation = gapSum / static_cast<double>(overlap.size());
   out.push_back(std::move(c));
   return true;
 }
@@ -263,8 +273,8 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
 
   std::vector<Contact>& out = contacts ? *contacts : s.discard;
   const size_t before = out.size();
-  const bool coplanar = *minP >= -eps && *maxP <= eps && *minQ >= -eps && *maxQ <= eps;
-  if (!(coplanar && p.plane.normal.dot(q.plane.normal) < 0 && areaContact(p, s.dP.data(), q, eps, out, s))) {
+  const bool facing = p.plane.normal.dot(q.plane.normal) <= -std::cos(kFaceContactAngle);
+  if (!(facing && areaContact(p, q, eps, out, s))) {
     featuresOnFace(p, s.dP.data(), q, eps, true, out, s);
     featuresOnFace(q, s.dQ.data(), p, eps, false, out, s);
     edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out);

@@ -38,6 +38,12 @@ inline constexpr double kParallelSine = 1.5e-8;
 /// A planar patch within kPlanarityTolerance over 0.01 m faces bends by about 1e-4.
 inline constexpr double kFlatEdgeAngle = 1e-4;
 
+/// Largest angle (rad) between two faces' opposed normals for them to be tried as
+/// face-on-face; whether they are is then decided where they overlap (every corner of
+/// the overlap within the contact tolerance of both planes). 0.01 rad lets a 1 cm face
+/// tilt by the whole default tolerance.
+inline constexpr double kFaceContactAngle = 1e-2;
+
 /// Bounds on the number of times the voxel grid halves an object's container (M).
 /// Garcia-Alonso et al. found 8 or 9 best for their meshes; polysim picks M so that
 /// voxels are about as long as the object's faces (VoxelGrid::chooseHalvings): a box

@@ -10,6 +10,7 @@ namespace {
 
 // A contact prepared for the sweeps: lever arms, effective masses, target, impulses.
 struct Row {
+  ContactPoint* source;
   RigidBody* a;
   RigidBody* b;
   Eigen::Vector3d point, normal, tangent1, tangent2;
@@ -86,11 +87,12 @@ void applyRestitution(std::vector<Row>& rows, double energyBefore) {
 
 }  // namespace
 
-SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<ContactPoint>& contacts, double dt) {
+SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt) {
   std::vector<Row> rows;
   rows.reserve(contacts.size());
-  for (const ContactPoint& c : contacts) {
+  for (ContactPoint& c : contacts) {
     Row r;
+    r.source = &c;
     r.a = &bodies[c.a];
     r.b = &bodies[c.b];
     if (r.a->isStatic && r.b->isStatic) continue;  // static pairs cost nothing
@@ -101,9 +103,9 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<Conta
     const double approach = r.normal.dot(relativeVelocity(r));
     if (approach < -kBounceThreshold) r.restitution = c.restitution;
     r.target = -std::max(c.separation, 0.0) / dt;
+    r.tangent1 = r.normal.unitOrthogonal();
+    r.tangent2 = r.normal.cross(r.tangent1);
     if (r.friction > 0) {
-      r.tangent1 = r.normal.unitOrthogonal();
-      r.tangent2 = r.normal.cross(r.tangent1);
       r.tangentMass1 = effectiveMass(r, r.tangent1);
       r.tangentMass2 = effectiveMass(r, r.tangent2);
     }
@@ -111,6 +113,15 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<Conta
   }
 
   const double energyBefore = kineticEnergy(movingBodies(rows));
+  for (Row& r : rows) {  // warm start
+    r.normalImpulse = std::max(0.0, r.source->normalImpulse);
+    if (r.friction > 0) {
+      r.frictionImpulse = r.source->frictionImpulse;
+      const double limit = r.friction * r.normalImpulse;
+      if (r.frictionImpulse.norm() > limit) r.frictionImpulse *= limit / r.frictionImpulse.norm();
+    }
+    applyPair(r, r.normalImpulse * r.normal + r.frictionImpulse.x() * r.tangent1 + r.frictionImpulse.y() * r.tangent2);
+  }
   SolveStats stats;
   while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
     ++stats.iterations;
@@ -142,6 +153,10 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<Conta
     }
   }
   applyRestitution(rows, energyBefore);
+  for (Row& r : rows) {
+    r.source->normalImpulse = r.normalImpulse;
+    r.source->frictionImpulse = r.frictionImpulse;
+  }
   return stats;
 }
 

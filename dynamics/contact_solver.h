@@ -18,6 +18,11 @@ struct ContactPoint {
   double separation = 0.0;                             // m: gap (> 0) or overlap (< 0)
   double restitution = 0.0;                            // the pair's coefficient
   double friction = 0.0;                               // the pair's Coulomb coefficient
+  /// In: the impulses to start from (warm start, e.g. last step's for the same point);
+  /// out: the accumulated impulses solved (N s). Friction along (t1, t2), t1 =
+  /// normal.unitOrthogonal(), t2 = normal x t1.
+  double normalImpulse = 0.0;
+  Eigen::Vector2d frictionImpulse = Eigen::Vector2d::Zero();
 };
 
 struct SolveStats {
@@ -35,6 +40,8 @@ struct SolveStats {
 /// friction the rebound is scaled down where needed so that kinetic energy never rises.
 /// `dt` (s) is the time to the next contact detection. Static bodies are never changed;
 /// contacts with zero friction skip all friction work.
-SolveStats solveContacts(std::vector<RigidBody>& bodies, const std::vector<ContactPoint>& contacts, double dt);
+/// Starting from each contact's given impulses (warm start) lets a resting stack carry
+/// its weight from the first sweep; they are clamped to the same limits first.
+SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt);
 
 }  // namespace polysim::dynamics

@@ -19,6 +19,11 @@ namespace polysim::sim {
 /// their resolved velocities, poses stay), and the step records that it hit the bound.
 inline constexpr int kMaxEventsPerStep = 8;
 
+/// A contact point is taken for last solve's point of the same pair when it lies within
+/// this distance (m) of it; it then starts from that point's force (warm start). Resting
+/// contacts reappear at the same place to round-off; 1 mm is far from both.
+inline constexpr double kWarmStartRadius = 1e-3;
+
 /// One contact event inside a step.
 struct StepEvent {
   double time = 0.0;  // s, simulation time of the contact
@@ -69,6 +74,7 @@ class World {
   std::vector<PairMaterial> materials_;  // per body: its restitution and friction
   std::vector<double> sizes_;            // per body: farthest vertex from the centre of mass (m)
   std::vector<collision::PairResult> contacts_;
+  std::vector<dynamics::ContactPoint> lastSolved_;  // impulses as forces (N): impulse / horizon
   double time_ = 0.0;
   double firstContact_ = -1.0;
   StepReport report_;

@@ -143,7 +143,8 @@ V3 runOnPlane(const V3& n, double mu, const V3& v0, double seconds, double dt) {
   const V3 start = bodies[0].position;
   for (int k = 0; k < static_cast<int>(std::round(seconds / dt)); ++k) {
     integrateVelocity(bodies[0], V3(0, 0, -g), dt);
-    solveContacts(bodies, cornersOnPlane(bodies, n, mu), dt);
+    std::vector<ContactPoint> contacts = cornersOnPlane(bodies, n, mu);
+    solveContacts(bodies, contacts, dt);
     advancePose(bodies[0], dt);
   }
   return bodies[0].position - start;
