@@ -6,7 +6,7 @@ namespace polysim::dynamics {
 /// Most sweeps of the contact solver over its contacts in one solve. Stacks converge
 /// slowest (error shrinks by a roughly constant factor per sweep); 200 holds a
 /// 20-box stack (see the stack scenes).
-inline constexpr int kMaxSolverIterations = 200;
+inline constexpr int kMaxSolverIterations = 600;
 
 /// The solver stops once no sweep changes any accumulated impulse by more than this
 /// (N s per kg of the lighter body, i.e. m/s). A resting body keeps a residual speed

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "sim/commands.h"
+#include "sim/log_inspect.h"
 #include "sim/run.h"
 #include "sim/scene.h"
 
@@ -34,6 +35,17 @@ int main(int argc, char** argv) {
   run->add_option("--log", runOptions.logPath, "write the step log (JSON Lines) to this file");
   run->add_option("--method", runMethod, "time-of-contact method")->check(CLI::IsMember({"bisection", "regula-falsi"}));
 
+  std::string logFile;
+  polysim::sim::LogQuery logQuery;
+  std::string logBody;
+  CLI::App* logCmd = app.add_subcommand("log", "a step log as a per-step or per-event table");
+  logCmd->add_option("FILE", logFile, "step log written by 'polysim run --log'")->required();
+  logCmd->add_option("--body", logBody, "only events touching this body; its position and velocity per step");
+  logCmd->add_option("--from", logQuery.from, "earliest time (s)");
+  logCmd->add_option("--to", logQuery.to, "latest time (s)");
+  logCmd->add_flag("--events", logQuery.events, "one row per contact event");
+  logCmd->add_flag("--table", logQuery.table, "aligned text instead of JSON");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (contacts->parsed()) return polysim::sim::contactsCommand(scene, std::cout);
@@ -44,6 +56,11 @@ int main(int argc, char** argv) {
                                                    : polysim::collision::TocMethod::RegulaFalsi;
       runOptions.progress = isatty(STDERR_FILENO);
       return polysim::sim::runCommand(scene, runOptions, std::cout);
+    }
+    if (logCmd->parsed()) {
+      if (!logBody.empty()) logQuery.body = logBody;
+      polysim::sim::inspectLog(logFile, logQuery, std::cout);
+      return 0;
     }
     if (toc->parsed()) return polysim::sim::tocCommand(scene, interval, method, std::cout);
   } catch (const polysim::sim::SceneError& e) {

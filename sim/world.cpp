@@ -58,7 +58,9 @@ const StepReport& World::step(double dt) {
     }
     resolveContacts(remaining);                              // impulses at the contact
   }
-  time_ += dt;
+  const double y = dt - timeCompensation_, sum = time_ + y;  // compensated time_ += dt
+  timeCompensation_ = (sum - time_) - y;
+  time_ = sum;
   report_.time = time_;
   return report_;
 }

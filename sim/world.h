@@ -76,6 +76,7 @@ class World {
   std::vector<collision::PairResult> contacts_;
   std::vector<dynamics::ContactPoint> lastSolved_;  // impulses as forces (N): impulse / horizon
   double time_ = 0.0;
+  double timeCompensation_ = 0.0;  // Kahan summation: 14400 steps of 1/240 add up to 60 exactly
   double firstContact_ = -1.0;
   StepReport report_;
 };

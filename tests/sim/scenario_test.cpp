@@ -1,0 +1,219 @@
+// The scenes in scenes/, run through the step loop, against analytic answers where they
+// exist, and the failure modes pinned to what polysim does today (see the README).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "dynamics/settings.h"
+#include "sim/run.h"
+#include "sim/step_log.h"
+#include "sim/world.h"
+
+namespace polysim::sim {
+namespace {
+
+using V3 = Eigen::Vector3d;
+constexpr double g = 9.81;
+
+Scene scene(const std::string& name) { return loadScene(std::string(POLYSIM_SCENES_DIR) + "/" + name + ".json"); }
+
+int bodyIndex(const World& w, const std::string& name) {
+  for (size_t i = 0; i < w.scene().bodies.size(); ++i)
+    if (w.scene().bodies[i].name == name) return static_cast<int>(i);
+  ADD_FAILURE() << "no body " << name;
+  return 0;
+}
+
+// Runs the world for `seconds`, calling f after each step.
+template <class F>
+void runFor(World& w, double seconds, F&& f) {
+  const long steps = std::lround(seconds / w.scene().dt);
+  for (long k = 0; k < steps; ++k) f(w.step(w.scene().dt));
+}
+
+TEST(Scenarios, DropBoxLandsAtTheDiscreteFallTimeAndRestsAtHalfItsHeight) {
+  World w(scene("drop_box"));
+  double maxPenetration = 0;
+  runFor(w, 3.0, [&](const StepReport& r) { maxPenetration = std::max(maxPenetration, r.penetration); });
+  // Bottom from 1.5 m: sqrt(2h/g) = 0.553 s; semi-implicit Euler reaches it up to one step early.
+  EXPECT_NEAR(w.firstContactTime(), std::sqrt(2 * 1.5 / g), w.scene().dt);
+  const int box = bodyIndex(w, "box");
+  EXPECT_NEAR(w.bodies()[box].position.z(), 0.5, w.scene().contact.tolerance);
+  EXPECT_TRUE(w.atRest(box));
+  EXPECT_LE(maxPenetration, w.scene().contact.tolerance);
+}
+
+TEST(Scenarios, TiltedDropLandsOnACornerAndSettlesFaceDown) {
+  World w(scene("tilted_drop"));
+  runFor(w, 4.0, [](const StepReport&) {});
+  const int box = bodyIndex(w, "box");
+  const dynamics::RigidBody& b = w.bodies()[box];
+  EXPECT_TRUE(w.atRest(box));
+  EXPECT_NEAR(b.position.z(), 0.5, 2 * w.scene().contact.tolerance);
+  // Face down: one of the box's axes points straight up or down.
+  const Eigen::Matrix3d R = b.orientation.toRotationMatrix();
+  EXPECT_GT(R.row(2).cwiseAbs().maxCoeff(), 1 - 1e-6);
+}
+
+TEST(Scenarios, BounceApexIsRestitutionSquaredTimesTheDropHeight) {
+  World w(scene("bounce"));
+  const int box = bodyIndex(w, "box");
+  const double dropHeight = 1.0;  // bottom face 1 m above the ground
+  double apex = 0.0;
+  bool bounced = false;
+  runFor(w, 1.2, [&](const StepReport&) {
+    const dynamics::RigidBody& b = w.bodies()[box];
+    if (w.firstContactTime() >= 0 && b.velocity.z() > 0) bounced = true;
+    if (bounced) apex = std::max(apex, b.position.z() - 0.5);
+  });
+  const double e = w.scene().contact.restitution;
+  EXPECT_NEAR(apex, e * e * dropHeight, 0.01 * e * e * dropHeight);
+}
+
+// A stack standing for 60 s at dt 1/60: every box stays within `drift` of its column.
+void expectStackStands(const std::string& name, int boxes, double drift) {
+  World w(scene(name));
+  runFor(w, 60.0, [](const StepReport&) {});
+  double worst = 0.0;
+  for (int k = 0; k < boxes; ++k) {
+    const dynamics::RigidBody& b = w.bodies()[bodyIndex(w, "box" + std::to_string(k))];
+    worst = std::max(worst, b.position.head<2>().norm());
+    EXPECT_NEAR(b.position.z(), 0.5 + k, 1e-3) << "box" << k;
+  }
+  EXPECT_LT(worst, drift);
+  ::testing::Test::RecordProperty("horizontal_drift_m", std::to_string(worst));
+}
+
+TEST(Scenarios, StackOf5StandsFor60s) { expectStackStands("stack_5", 5, 1e-3); }
+TEST(Scenarios, StackOf10StandsFor60s) { expectStackStands("stack_10", 10, 5e-3); }
+TEST(Scenarios, StackOf20StandsFor60s) { expectStackStands("stack_20", 20, 2e-2); }
+
+TEST(Scenarios, PyramidStands) {
+  const Scene s = scene("pyramid");
+  World w(s);
+  runFor(w, 5.0, [](const StepReport&) {});
+  for (size_t i = 0; i < s.bodies.size(); ++i)
+    if (!s.bodies[i].isStatic) {
+      EXPECT_LT((w.bodies()[i].position - s.bodies[i].position).norm(), 1e-2) << s.bodies[i].name;
+    }
+}
+
+TEST(Scenarios, BoxSlidesDownA30DegreeRampAsCoulombSays) {
+  World w(scene("ramp_slides"));
+  const int box = bodyIndex(w, "box");
+  const V3 start = w.bodies()[box].position;
+  runFor(w, 1.0, [](const StepReport&) {});
+  const double angle = M_PI / 6, mu = w.scene().contact.friction;
+  const double expected = 0.5 * g * (std::sin(angle) - mu * std::cos(angle)) * 1.0;
+  EXPECT_NEAR((w.bodies()[box].position - start).norm(), expected, 0.01 * expected);
+}
+
+TEST(Scenarios, BoxSticksOnA30DegreeRampWithFriction07) {
+  World w(scene("ramp_sticks"));
+  const int box = bodyIndex(w, "box");
+  const V3 start = w.bodies()[box].position;
+  runFor(w, 1.0, [](const StepReport&) {});
+  EXPECT_LT((w.bodies()[box].position - start).norm(), 1e-6);
+}
+
+TEST(Scenarios, CupCatchesTheBoxOnItsCavityFloor) {
+  World w(scene("cup_catch"));
+  runFor(w, 3.0, [](const StepReport&) {});
+  const int box = bodyIndex(w, "box");
+  const V3 p = w.bodies()[box].position;
+  EXPECT_TRUE(w.atRest(box));
+  EXPECT_NEAR(p.z(), 0.5 + 0.25, 2 * w.scene().contact.tolerance);  // cavity floor + half the box
+  EXPECT_LT(p.head<2>().cwiseAbs().maxCoeff(), 1.0 - 0.25);          // inside the walls
+}
+
+// Failure modes: each pinned to what polysim does, and said in the README.
+
+TEST(FailureModes, FastSmallBoxDoesNotTunnelThroughAThinPlate) {
+  World w(scene("fast_box_thin_plate"));  // 100 m/s, 1.7 m per step, plate 1 cm thick
+  runFor(w, 0.1, [](const StepReport&) {});
+  EXPECT_GT(w.bodies()[bodyIndex(w, "bullet")].position.z(), 0.005);
+  EXPECT_NEAR(w.bodies()[bodyIndex(w, "bullet")].position.z(), 0.005 + 0.05, 2e-4);
+}
+
+TEST(FailureModes, BoxBouncingWithRestitution09ComesToRestWithoutStalling) {
+  World w(scene("bounce_e09"));
+  long limitSteps = 0;
+  runFor(w, 20.0, [&](const StepReport& r) {
+    limitSteps += r.eventLimitHit;
+    EXPECT_LE(static_cast<int>(r.events.size()), kMaxEventsPerStep);
+  });
+  EXPECT_TRUE(w.atRest(bodyIndex(w, "box")));
+  EXPECT_EQ(limitSteps, 0);  // bounces below kBounceThreshold stop bouncing before the bound
+}
+
+TEST(FailureModes, HeavyBoxOnALightOneStaysStackedButCreeps) {
+  World w(scene("heavy_on_light"));
+  runFor(w, 5.0, [](const StepReport&) {});
+  const dynamics::RigidBody& heavy = w.bodies()[bodyIndex(w, "heavy")];
+  EXPECT_NEAR(heavy.position.z(), 1.5, 1e-3);
+  EXPECT_LT(heavy.position.head<2>().norm(), 1e-3);
+}
+
+TEST(FailureModes, DegenerateContactsResolve) {
+  for (const std::string name : {"degenerate_face_on_face", "degenerate_edge_on_edge", "degenerate_vertex_on_vertex"}) {
+    SCOPED_TRACE(name);
+    World w(scene(name));
+    double penetration = 0;
+    runFor(w, 2.0, [&](const StepReport& r) { penetration = std::max(penetration, r.penetration); });
+    EXPECT_LE(penetration, w.scene().contact.tolerance);
+    EXPECT_LT(w.energy(), w.scene().bodies.size() * 1000.0);  // nothing blew up
+  }
+}
+
+TEST(FailureModes, ThinPlateLandsFlat) {
+  World w(scene("thin_plate_flat"));
+  runFor(w, 2.0, [](const StepReport&) {});
+  const int plate = bodyIndex(w, "plate");
+  EXPECT_NEAR(w.bodies()[plate].position.z(), 0.005, w.scene().contact.tolerance);
+  EXPECT_TRUE(w.atRest(plate));
+}
+
+TEST(FailureModes, SceneStartingInterpenetratedIsAClearError) {
+  try {
+    World w(scene("starts_interpenetrating"));
+    FAIL() << "expected SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies \"box\" and \"ground\": interpenetrate at the start"), std::string::npos);
+  }
+}
+
+TEST(StepLog, SameSceneTwiceGivesAnIdenticalLog) {
+  auto logOf = [](const std::string& name) {
+    World w(scene(name));
+    std::string all;
+    runFor(w, 2.0, [&](const StepReport& r) { all += stepToJson(w, r).dump() + "\n"; });
+    return all;
+  };
+  EXPECT_EQ(logOf("tilted_drop"), logOf("tilted_drop"));
+  EXPECT_EQ(logOf("pyramid"), logOf("pyramid"));
+}
+
+TEST(StepLog, EveryLineIsACompleteStepWithItsEvents) {
+  const std::string path = testing::TempDir() + "polysim_bounce.jsonl";
+  RunOptions options;
+  options.logPath = path;
+  options.duration = 1.0;
+  const nlohmann::ordered_json summary = runScene(scene("bounce"), options);
+  std::ifstream in(path);
+  std::string line;
+  long lines = 0, events = 0;
+  while (std::getline(in, line)) {
+    const auto j = nlohmann::json::parse(line);
+    ++lines;
+    ASSERT_EQ(j["step"].get<long>(), lines);
+    ASSERT_TRUE(j.contains("t") && j.contains("bodies") && j.contains("energy"));
+    events += static_cast<long>(j["events"].size());
+  }
+  EXPECT_EQ(lines, summary["steps"].get<long>());
+  EXPECT_GE(events, 2);  // the landing and at least one rebound
+}
+
+}  // namespace
+}  // namespace polysim::sim
