@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "collision/polygon_mesh.h"
+#include "tests/poses.h"
 
 namespace polysim::test {
 
@@ -36,17 +37,6 @@ inline std::vector<NamedFrame> worldFrames() {
   near.linear() = Eigen::AngleAxisd(1e-7, Eigen::Vector3d(0, 1, 1).normalized()).toRotationMatrix();
   near.translation() << 1e-7, 0, -1e-7;
   return {{"identity", Eigen::Isometry3d::Identity()}, {"translated", translated}, {"rotated", rotated}, {"near_identity", near}};
-}
-
-inline Eigen::Isometry3d pose(const Eigen::Vector3d& p, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  X.translation() = p;
-  return X;
-}
-
-inline Eigen::Matrix3d rot(double angle, const Eigen::Vector3d& axis) {
-  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
 /// A prism made by extruding a profile in the (x, z) plane along y from 0 to `depth`.

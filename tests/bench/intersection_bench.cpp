@@ -12,6 +12,7 @@
 #include "collision/shapes.h"
 #include "collision/tolerances.h"
 #include "tests/bench/ode_geometry.h"
+#include "tests/poses.h"
 
 namespace polysim::bench {
 namespace {
@@ -26,12 +27,7 @@ struct OdeSession {
 };
 const OdeSession kOde;
 
-Eigen::Isometry3d at(const V3& p, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  X.translation() = p;
-  return X;
-}
+using test::pose;
 
 // Sphere B turned so that one of its vertices faces sphere A along the centre line.
 struct SpherePair {
@@ -40,8 +36,8 @@ struct SpherePair {
   SpherePair(int level, double distance) : mesh(collision::makeIcosphere(1.0, level)) {
     const V3 axis = V3(1, 1, 1).normalized();
     const V3 vertex = mesh.vertices[0].normalized();
-    X_A = at(V3::Zero());
-    X_B = at(distance * axis, Eigen::Quaterniond::FromTwoVectors(vertex, -axis).toRotationMatrix());
+    X_A = pose(V3::Zero());
+    X_B = pose(distance * axis, Eigen::Quaterniond::FromTwoVectors(vertex, -axis).toRotationMatrix());
   }
 };
 
@@ -99,9 +95,9 @@ constexpr double kSink = 0.5 * collision::kDefaultContactTolerance;
 void BM_Polysim_BoxOnFloor(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0));
   ObjectDatabase db;
-  db.add("floor", std::make_shared<PolygonMesh>(collision::makeTriangulatedFloor(10, 10, k)), at(V3::Zero()), true,
+  db.add("floor", std::make_shared<PolygonMesh>(collision::makeTriangulatedFloor(10, 10, k)), pose(V3::Zero()), true,
          static_cast<int>(state.range(1)));
-  db.add("box", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), at(V3(0.05, 0.05, 0.5 - kSink)), false);
+  db.add("box", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), pose(V3(0.05, 0.05, 0.5 - kSink)), false);
   collision::IntersectionWorkspace ws;
   collision::IntersectionResult r;
   for (auto _ : state) {
@@ -118,7 +114,7 @@ void BM_Ode_BoxOnFloor(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0));
   OdeTriMesh floor(collision::makeTriangulatedFloor(10, 10, k));
   dGeomID box = dCreateBox(nullptr, 1, 1, 1);
-  setPose(box, at(V3(0.05, 0.05, 0.5 - kSink)));
+  setPose(box, pose(V3(0.05, 0.05, 0.5 - kSink)));
   std::vector<dContactGeom> contacts(1000);
   int n = 0;
   for (auto _ : state) {

@@ -10,6 +10,8 @@
 
 #include "collision/shapes.h"
 #include "collision/time_of_contact.h"
+#include "sim/kinematic_motion.h"
+#include "tests/poses.h"
 
 namespace polysim::bench {
 namespace {
@@ -17,49 +19,30 @@ namespace {
 using V3 = Eigen::Vector3d;
 using namespace collision;
 
-struct Motion {
-  Eigen::Isometry3d start;
-  V3 v, w;
-};
-
-void movePose(double t, const void* info, Eigen::Isometry3d& X) {
-  const Motion& m = *static_cast<const Motion*>(info);
-  Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
-  if (m.w.norm() > 0) turn = Eigen::AngleAxisd(m.w.norm() * t, m.w.normalized()).toRotationMatrix();
-  X.linear() = turn * m.start.linear();
-  X.translation() = m.start.translation() + t * m.v;
-}
-
-Eigen::Isometry3d at(const V3& p, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  X.translation() = p;
-  return X;
-}
+using sim::KinematicMotion;
+using test::pose;
 
 // A scenario: one static object and one moving, and the reference time of contact.
 struct Scenario {
   ObjectDatabase db;
-  Motion motion;
+  KinematicMotion motion;
   double reference = 0.0;
 };
 
 void addMover(Scenario& s, std::shared_ptr<PolygonMesh> mesh) {
   const int id = s.db.add("mover", mesh, s.motion.start, false);
   ObjNode& node = s.db.objects[id];
-  node.ctrans = movePose;
+  node.ctrans = sim::kinematicPose;
   node.info = &s.motion;
-  double radius = 0.0;
-  for (const V3& p : mesh->vertices()) radius = std::max(radius, p.norm());
-  node.motionBound = s.motion.v.norm() + s.motion.w.norm() * radius;
+  node.motionBound = sim::kinematicMotionBound(s.motion, *mesh);
 }
 
 // Cube above a 10x10x1 slab whose top is at z = 0; its bottom face from z = 1.5 at t = 0
 // to z = -0.5 at t = 1, optionally turning 30 degrees about x.
 std::unique_ptr<Scenario> cubeOntoSlab(bool turning) {
   auto s = std::make_unique<Scenario>();
-  s->db.add("slab", std::make_shared<PolygonMesh>(makeBox(V3(10, 10, 1))), at(V3(0, 0, -0.5)), true);
-  s->motion = {at(V3(0, 0, 2.0)), V3(0, 0, -2.0), turning ? V3(M_PI / 6, 0, 0) : V3::Zero()};
+  s->db.add("slab", std::make_shared<PolygonMesh>(makeBox(V3(10, 10, 1))), pose(V3(0, 0, -0.5)), true);
+  s->motion = {pose(V3(0, 0, 2.0)), V3(0, 0, -2.0), turning ? V3(M_PI / 6, 0, 0) : V3::Zero(), 1.0};
   addMover(*s, std::make_shared<PolygonMesh>(makeBox(V3(1, 1, 1))));
   s->reference = turning ? 0.678641277913399 : 0.75;
   return s;
@@ -70,8 +53,8 @@ std::unique_ptr<Scenario> icospheres() {
   auto s = std::make_unique<Scenario>();
   auto mesh = std::make_shared<PolygonMesh>(makeIcosphere(1.0, 3));
   const V3 axis = V3(1, 1, 1).normalized();
-  s->db.add("A", mesh, at(V3::Zero()), true);
-  s->motion = {at(3.0 * axis), -1.5 * axis, V3::Zero()};
+  s->db.add("A", mesh, pose(V3::Zero()), true);
+  s->motion = {pose(3.0 * axis), -1.5 * axis, V3::Zero(), 1.0};
   addMover(*s, mesh);
   // Reference: the signed-separation root found with a tolerance a thousand times finer.
   ObjectDatabase fine = s->db;

@@ -12,6 +12,7 @@
 
 #include "collision/shapes.h"
 #include "collision/tolerances.h"
+#include "sim/kinematic_motion.h"
 #include "tests/test_support.h"
 
 namespace polysim::collision {
@@ -22,19 +23,7 @@ using V3 = Eigen::Vector3d;
 
 constexpr double kEps = kDefaultContactTolerance;
 
-// Constant velocity v and angular velocity w (about the body's origin) over [0, 1].
-struct Motion {
-  Eigen::Isometry3d start;
-  V3 v = V3::Zero(), w = V3::Zero();
-};
-
-void movePose(double t, const void* info, Eigen::Isometry3d& X) {
-  const Motion& m = *static_cast<const Motion*>(info);
-  Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
-  if (m.w.norm() > 0) turn = Eigen::AngleAxisd(m.w.norm() * t, m.w.normalized()).toRotationMatrix();
-  X.linear() = turn * m.start.linear();
-  X.translation() = m.start.translation() + t * m.v;
-}
+using sim::KinematicMotion;  // constant velocity and angular velocity, here over an interval of 1
 
 // A database of objects, some of them moving; motion bounds filled in.
 class World {
@@ -45,14 +34,12 @@ class World {
     return db.add("static" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, true);
   }
   int addMoving(const MeshData& mesh, const Eigen::Isometry3d& X, const V3& v, const V3& w = V3::Zero()) {
-    motions_.push_back(std::make_unique<Motion>(Motion{X, v, w}));
+    motions_.push_back(std::make_unique<KinematicMotion>(KinematicMotion{X, v, w, 1.0}));
     const int id = db.add("moving" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, false);
     ObjNode& node = db.objects[id];
-    node.ctrans = movePose;
+    node.ctrans = sim::kinematicPose;
     node.info = motions_.back().get();
-    double radius = 0;
-    for (const V3& p : node.mesh->vertices()) radius = std::max(radius, p.norm());
-    node.motionBound = v.norm() + w.norm() * radius;
+    node.motionBound = sim::kinematicMotionBound(*motions_.back(), *node.mesh);
     return id;
   }
   TocResult detect(TocMethod method) {
@@ -64,7 +51,7 @@ class World {
   ObjectDatabase db;
 
  private:
-  std::vector<std::unique_ptr<Motion>> motions_;
+  std::vector<std::unique_ptr<KinematicMotion>> motions_;
 };
 
 // Time tolerance for a method: the contact band over the approach speed (per interval).
