@@ -6,6 +6,7 @@
 
 #include "sim/commands.h"
 #include "sim/log_inspect.h"
+#include "sim/ode_baseline.h"
 #include "sim/run.h"
 #include "sim/scene.h"
 
@@ -46,6 +47,11 @@ int main(int argc, char** argv) {
   logCmd->add_flag("--events", logQuery.events, "one row per contact event");
   logCmd->add_flag("--table", logQuery.table, "aligned text instead of JSON");
 
+  CLI::App* compare = app.add_subcommand("compare", "run the scene in polysim and in ODE and compare");
+  compare->add_option("SCENE", scene, "scene file (JSON)")->required();
+  compare->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  compare->add_option("--dt", runDt, "step in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (contacts->parsed()) return polysim::sim::contactsCommand(scene, std::cout);
@@ -56,6 +62,12 @@ int main(int argc, char** argv) {
                                                    : polysim::collision::TocMethod::RegulaFalsi;
       runOptions.progress = isatty(STDERR_FILENO);
       return polysim::sim::runCommand(scene, runOptions, std::cout);
+    }
+    if (compare->parsed()) {
+      if (runDuration > 0) runOptions.duration = runDuration;
+      if (runDt > 0) runOptions.dt = runDt;
+      std::cout << polysim::sim::compareWithOde(polysim::sim::loadScene(scene), runOptions).dump() << "\n";
+      return 0;
     }
     if (logCmd->parsed()) {
       if (!logBody.empty()) logQuery.body = logBody;
