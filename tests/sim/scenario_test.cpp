@@ -188,7 +188,7 @@ TEST(StepLog, SameSceneTwiceGivesAnIdenticalLog) {
   auto logOf = [](const std::string& name) {
     World w(scene(name));
     std::string all;
-    runFor(w, 2.0, [&](const StepReport& r) { all += stepToJson(w, r).dump() + "\n"; });
+    runFor(w, 1.0, [&](const StepReport& r) { all += stepToJson(w, r).dump() + "\n"; });
     return all;
   };
   EXPECT_EQ(logOf("tilted_drop"), logOf("tilted_drop"));
