@@ -18,7 +18,7 @@ using PairIds = std::vector<std::pair<int, int>>;
 // The state of the search: the database, its workspace and the count of tests made.
 struct Search {
   ObjectDatabase& db;
-  IntersectionWorkspace ws;
+  IntersectionWorkspace& ws;
   int tests = 0;
 
   // Sets the database to time t and returns the status of every pair (no contacts).
@@ -203,7 +203,12 @@ Found regulaFalsi(Search& s, Bracket br) {
 }  // namespace
 
 TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options) {
-  Search s{db, {}, 0};
+  IntersectionWorkspace workspace;
+  return collisionDetect(db, workspace, options);
+}
+
+TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, const TocOptions& options) {
+  Search s{db, workspace, 0};
   TocResult result;
   result.subintervals = subintervalsAgainstTunnelling(db);
 

@@ -73,6 +73,9 @@ class InitialInterpenetration : public std::runtime_error {
 ///
 /// Throws InitialInterpenetration if the database interpenetrates at t = 0.
 TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options = {});
+/// The same with the caller's scratch memory, so that repeated calls (every step of a
+/// simulation) do not allocate per-face caches again.
+TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, const TocOptions& options = {});
 
 std::string toString(TocMethod method);
 std::string toString(TocStop stop);

@@ -33,8 +33,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
     paths_[i].body = &bodies_[i];
     db_.objects[i].info = &paths_[i];
   }
-  collision::IntersectionWorkspace ws;
-  contacts_ = collision::test4Intersection(db_, ws).pairs;
+  contacts_ = collision::test4Intersection(db_, workspace_).pairs;
   if (!contacts_.empty()) firstContact_ = 0.0;
 }
 
@@ -114,7 +113,7 @@ void World::predictMotion(double duration) {
 
 collision::TocResult World::detectCollisions() {
   db_.setTime(1.0);  // collisionDetect() starts from the end of the interval
-  return collision::collisionDetect(db_, tocOptions_);
+  return collision::collisionDetect(db_, workspace_, tocOptions_);
 }
 
 void World::commitPoses(double elapsed) {

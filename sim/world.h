@@ -69,6 +69,7 @@ class World {
   Scene scene_;
   collision::TocOptions tocOptions_;
   collision::ObjectDatabase db_;
+  collision::IntersectionWorkspace workspace_;  // reused by every collisionDetect() call
   std::vector<dynamics::RigidBody> bodies_;
   std::vector<BodyPath> paths_;
   std::vector<PairMaterial> materials_;  // per body: its restitution and friction

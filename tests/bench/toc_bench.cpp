@@ -71,9 +71,10 @@ void runQueries(benchmark::State& state, Scenario& s) {
   TocOptions options;
   options.method = state.range(0) == 0 ? TocMethod::Bisection : TocMethod::RegulaFalsi;
   TocResult r;
+  IntersectionWorkspace workspace;
   for (auto _ : state) {
     s.db.setTime(1.0);
-    r = collisionDetect(s.db, options);
+    r = collisionDetect(s.db, workspace, options);
     benchmark::DoNotOptimize(r);
   }
   state.SetLabel(toString(options.method));
