@@ -1,5 +1,7 @@
 #include "dynamics/rigid_body.h"
 
+#include "dynamics/settings.h"
+
 namespace polysim::dynamics {
 
 RigidBody RigidBody::dynamic(const MassProperties& props) {
@@ -27,6 +29,10 @@ void RigidBody::applyImpulse(const Eigen::Vector3d& J, const Eigen::Vector3d& p)
   if (isStatic) return;
   velocity += inverseMass * J;
   angularVelocity += inverseInertiaWorld() * (p - centerOfMass()).cross(J);
+}
+
+bool atRest(const Eigen::Vector3d& velocity, const Eigen::Vector3d& angularVelocity, double size) {
+  return velocity.norm() < kRestSpeed && angularVelocity.norm() * size < kRestSpeed;
 }
 
 double RigidBody::kineticEnergy() const {

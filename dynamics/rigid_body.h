@@ -41,4 +41,8 @@ struct RigidBody {
   Eigen::Isometry3d pose() const;
 };
 
+/// True when a body of the given size (m: its farthest point from the centre of mass)
+/// moves slower than kRestSpeed, counting the speed its spin gives its farthest point.
+bool atRest(const Eigen::Vector3d& velocity, const Eigen::Vector3d& angularVelocity, double size);
+
 }  // namespace polysim::dynamics

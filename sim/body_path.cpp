@@ -9,9 +9,7 @@ void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO) {
   X_WO = dynamics::poseAfter(*path.body, s * path.duration);
 }
 
-double pathMotionBound(const dynamics::RigidBody& body, const collision::PolygonMesh& mesh, double duration) {
-  double radius = 0.0;
-  for (const Eigen::Vector3d& v : mesh.vertices()) radius = std::max(radius, (v - body.centerOfMassLocal).norm());
+double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration) {
   return duration * (body.velocity.norm() + body.angularVelocity.norm() * radius);
 }
 

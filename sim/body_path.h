@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "collision/contact.h"
-#include "collision/polygon_mesh.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/rigid_body.h"
 
@@ -20,9 +19,9 @@ struct BodyPath {
 /// ctrans: the pose the integrator reaches after s * duration (dynamics::poseAfter).
 void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO);
 
-/// How far any vertex can move along the path (m): |v| T + |w| T r, r the farthest
-/// vertex from the centre of mass.
-double pathMotionBound(const dynamics::RigidBody& body, const collision::PolygonMesh& mesh, double duration);
+/// How far any vertex can move along the path (m): |v| T + |w| T r, where `radius` is
+/// the body's farthest vertex from its centre of mass.
+double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration);
 
 /// Material of a pair of bodies: the larger restitution, the geometric mean of frictions.
 struct PairMaterial {

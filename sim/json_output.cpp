@@ -13,6 +13,16 @@ nlohmann::ordered_json toJson(const Eigen::Vector3d& v) {
   return nlohmann::ordered_json::array({forOutput(v.x()), forOutput(v.y()), forOutput(v.z())});
 }
 
+nlohmann::ordered_json bodyStateToJson(const std::string& name, const Eigen::Vector3d& position,
+                                       const Eigen::Quaterniond& q, const Eigen::Vector3d& velocity,
+                                       const Eigen::Vector3d& angularVelocity) {
+  return {{"name", name},
+          {"position", toJson(position)},
+          {"orientation", {forOutput(q.w()), forOutput(q.x()), forOutput(q.y()), forOutput(q.z())}},
+          {"velocity", toJson(velocity)},
+          {"angular_velocity", toJson(angularVelocity)}};
+}
+
 nlohmann::ordered_json toJson(const collision::Contact& c) {
   nlohmann::ordered_json points = nlohmann::ordered_json::array();
   for (const Eigen::Vector3d& p : c.points) points.push_back(toJson(p));

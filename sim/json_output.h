@@ -1,7 +1,7 @@
 #pragma once
 // SPEC.md's JSON for contacts and pairs.
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -14,6 +14,12 @@ namespace polysim::sim {
 /// does not reach users; 1e-12 m is far below any contact tolerance.
 double forOutput(double x);
 nlohmann::ordered_json toJson(const Eigen::Vector3d& v);
+
+/// A body's state as the summary and the step log print it: {"name", "position" (frame
+/// origin, m), "orientation" [w, x, y, z], "velocity" (m/s), "angular_velocity" (rad/s)}.
+nlohmann::ordered_json bodyStateToJson(const std::string& name, const Eigen::Vector3d& position,
+                                       const Eigen::Quaterniond& orientation, const Eigen::Vector3d& velocity,
+                                       const Eigen::Vector3d& angularVelocity);
 
 /// One contact: {"type", "normal", "points", "separation"}.
 nlohmann::ordered_json toJson(const collision::Contact& c);

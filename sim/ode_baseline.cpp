@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "dynamics/mass_properties.h"
+#include "dynamics/rigid_body.h"
 #include "dynamics/settings.h"
 #include "sim/json_output.h"
 
@@ -174,12 +175,9 @@ nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, con
     const Eigen::Quaterniond q = orientationOf(b);
     const Eigen::Vector3d v = vec(dBodyGetLinearVel(b.body)), omega = vec(dBodyGetAngularVel(b.body));
     const Eigen::Vector3d origin = vec(dBodyGetPosition(b.body)) - q * b.centerOfMassLocal;
-    bodies.push_back({{"name", scene.bodies[i].name},
-                      {"position", toJson(origin)},
-                      {"orientation", {forOutput(q.w()), forOutput(q.x()), forOutput(q.y()), forOutput(q.z())}},
-                      {"velocity", toJson(v)},
-                      {"angular_velocity", toJson(omega)},
-                      {"at_rest", v.norm() < dynamics::kRestSpeed && omega.norm() * b.size < dynamics::kRestSpeed}});
+    nlohmann::ordered_json state = bodyStateToJson(scene.bodies[i].name, origin, q, v, omega);
+    state["at_rest"] = dynamics::atRest(v, omega, b.size);
+    bodies.push_back(state);
   }
   nlohmann::ordered_json summary;
   summary["engine"] = "ode";

@@ -60,13 +60,10 @@ nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
   for (size_t i = 0; i < world.bodies().size(); ++i) {
     const dynamics::RigidBody& b = world.bodies()[i];
     if (b.isStatic) continue;
-    const Eigen::Quaterniond& q = b.orientation;
-    bodies.push_back({{"name", scene.bodies[i].name},
-                      {"position", toJson(b.position)},
-                      {"orientation", {forOutput(q.w()), forOutput(q.x()), forOutput(q.y()), forOutput(q.z())}},
-                      {"velocity", toJson(b.velocity)},
-                      {"angular_velocity", toJson(b.angularVelocity)},
-                      {"at_rest", world.atRest(static_cast<int>(i))}});
+    nlohmann::ordered_json state =
+        bodyStateToJson(scene.bodies[i].name, b.position, b.orientation, b.velocity, b.angularVelocity);
+    state["at_rest"] = world.atRest(static_cast<int>(i));
+    bodies.push_back(state);
   }
   nlohmann::ordered_json summary;
   summary["scene"] = scene.name;

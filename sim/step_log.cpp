@@ -19,12 +19,7 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) 
   for (size_t i = 0; i < world.bodies().size(); ++i) {
     const dynamics::RigidBody& b = world.bodies()[i];
     if (b.isStatic) continue;
-    const Eigen::Quaterniond& q = b.orientation;
-    bodies.push_back({{"name", names[i]},
-                      {"position", toJson(b.position)},
-                      {"orientation", {forOutput(q.w()), forOutput(q.x()), forOutput(q.y()), forOutput(q.z())}},
-                      {"velocity", toJson(b.velocity)},
-                      {"angular_velocity", toJson(b.angularVelocity)}});
+    bodies.push_back(bodyStateToJson(names[i], b.position, b.orientation, b.velocity, b.angularVelocity));
   }
   nlohmann::ordered_json line;
   line["step"] = report.step;

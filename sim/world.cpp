@@ -5,7 +5,6 @@
 
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
-#include "dynamics/settings.h"
 
 namespace polysim::sim {
 
@@ -107,7 +106,7 @@ void World::predictMotion(double duration) {
     const bool moving = !b.isStatic && (!b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0));
     node.ctrans = moving ? bodyPathPose : nullptr;  // a body at rest costs no update
     paths_[i].duration = duration;
-    node.motionBound = moving ? pathMotionBound(b, *node.mesh, duration) : 0.0;
+    node.motionBound = moving ? pathMotionBound(b, sizes_[i], duration) : 0.0;
   }
 }
 
@@ -140,8 +139,7 @@ double World::energy() const {
 
 bool World::atRest(int i) const {
   const dynamics::RigidBody& b = bodies_[i];
-  return b.isStatic ||
-         (b.velocity.norm() < dynamics::kRestSpeed && b.angularVelocity.norm() * sizes_[i] < dynamics::kRestSpeed);
+  return b.isStatic || dynamics::atRest(b.velocity, b.angularVelocity, sizes_[i]);
 }
 
 }  // namespace polysim::sim
