@@ -1,227 +1,159 @@
 #include "sim/ode_baseline.h"
 
-#include <ode/ode.h>
-
 #include <chrono>
 #include <cmath>
-#include <memory>
+#include <iomanip>
+#include <sstream>
 
-#include "dynamics/mass_properties.h"
-#include "dynamics/rigid_body.h"
-#include "dynamics/settings.h"
+#include "sim/contact_agreement.h"
 #include "sim/json_output.h"
+#include "sim/polysim_engine.h"
+#include "sim/run_record.h"
 
 namespace polysim::sim {
 namespace {
 
-// ODE's global state, initialised once for the process.
-struct OdeLibrary {
-  OdeLibrary() { dInitODE2(0); }
-  ~OdeLibrary() { dCloseODE(); }
-};
+// What `findings` calls a problem.
+constexpr double kFindingPenetrationFactor = 10.0;  // overlap beyond this many tolerances
+constexpr double kFindingPositionDifference = 0.01; // m between the engines' final positions
+constexpr double kFindingEnergyGain = 1e-6;         // J per J of initial energy (or per J when it is 0)
 
-struct OdeBody {
-  dBodyID body = nullptr;  // null for static
-  dGeomID geom = nullptr;
-  dTriMeshDataID meshData = nullptr;
-  std::vector<double> vertices;
-  std::vector<dTriIndex> indices;
-  Eigen::Vector3d centerOfMassLocal = Eigen::Vector3d::Zero();
-  double mass = 0.0, restitution = 0.0, friction = 0.0, size = 0.0;
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-};
+long stepsOf(const Scene& scene, const RunOptions& options) {
+  return std::lround(options.duration.value_or(scene.duration) / options.dt.value_or(scene.dt));
+}
 
-struct OdeWorld {
-  dWorldID world = nullptr;
-  dSpaceID space = nullptr;
-  dJointGroupID contacts = nullptr;
-  std::vector<std::unique_ptr<OdeBody>> bodies;
-  OdeSettings settings;
-  double deepest = 0.0;  // m, this step
-  int touching = 0;      // contacts this step
-  ~OdeWorld() {
-    for (auto& b : bodies) {
-      dGeomDestroy(b->geom);
-      if (b->meshData) dGeomTriMeshDataDestroy(b->meshData);
+Eigen::Vector3d upOf(const Scene& scene) {
+  return scene.gravity.isZero() ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-scene.gravity.normalized());
+}
+
+nlohmann::ordered_json settingsToJson(const OdeSettings& s) {
+  return {{"stepper", s.quickStep ? "quickstep" : "worldstep"},
+          {"iterations", s.quickStepIterations},
+          {"erp", s.erp},
+          {"cfm", s.cfm}};
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s << std::setprecision(3) << x;
+  return s.str();
+}
+
+// The lowest point (along up) of every static body: below it, a body has fallen through.
+double lowestStaticHeight(const Scene& scene) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const BodySpec& b : scene.bodies)
+    if (b.isStatic)
+      for (const Eigen::Vector3d& v : b.mesh.vertices) lowest = std::min(lowest, (b.pose() * v).dot(upOf(scene)));
+  return lowest;
+}
+
+void addFindings(const std::string& engine, const Scene& scene, const RunRecord& r, std::vector<std::string>& out) {
+  const double tolerance = scene.contact.tolerance;
+  if (r.maxPenetration > kFindingPenetrationFactor * tolerance)
+    out.push_back(engine + ": contacts overlapped by up to " + number(r.maxPenetration) + " m, " +
+                  number(r.maxPenetration / tolerance) + " times the contact tolerance");
+  if (r.maxEnergyIncrease > kFindingEnergyGain * std::max(1.0, std::abs(r.initialEnergy)))
+    out.push_back(engine + ": energy rose " + number(r.maxEnergyIncrease) + " J above its initial value");
+  const Eigen::Vector3d up = upOf(scene);
+  const double floor = lowestStaticHeight(scene);
+  for (const BodyState& end : r.final)
+    if (end.position.dot(up) < floor)
+      out.push_back(engine + ": " + end.name + " ended at height " + number(end.position.dot(up)) +
+                    " m, below every static body (it fell off or through)");
+}
+
+// polysim's run, with every contact state handed to ODE for comparison.
+// Its wall time leaves out the time spent asking ODE.
+RunRecord runPolysimComparingContacts(const Scene& scene, const RunOptions& options, ContactAgreement& agreement) {
+  const double dt = options.dt.value_or(scene.dt);
+  PolysimEngine engine(scene, options.method);
+  OdeContactProbe probe(scene);
+  const double press = kOdePressFactor * scene.contact.tolerance;
+  std::chrono::steady_clock::duration probing{};
+  RunRecord record = recordRun(engine, stepsOf(scene, options), dt, scene.gravity, [&] {
+    const World& world = engine.world();
+    if (world.contacts().empty()) return;
+    const auto start = std::chrono::steady_clock::now();
+    agreement.countState();
+    for (const collision::PairResult& pair : world.contacts()) {
+      if (pair.status != collision::Status::Contact) continue;
+      Eigen::Isometry3d X_WA = world.bodies()[pair.a].pose();
+      X_WA.pretranslate(-press * pressDirection(pair));
+      const auto ode = probe.contacts(pair.a, pair.b, X_WA, world.bodies()[pair.b].pose());
+      agreement.add(world.time(), scene.bodies[pair.a].name, scene.bodies[pair.b].name, pair, ode,
+                    comparePairContacts(pair, ode, press, scene.contact.tolerance));
     }
-    dJointGroupDestroy(contacts);
-    dSpaceDestroy(space);
-    dWorldDestroy(world);
-  }
-};
-
-Eigen::Vector3d vec(const dReal* v) { return {v[0], v[1], v[2]}; }
-
-void nearCallback(void* data, dGeomID g1, dGeomID g2) {
-  OdeWorld& w = *static_cast<OdeWorld*>(data);
-  const dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
-  if (!b1 && !b2) return;  // static pairs cost nothing
-  const auto* o1 = static_cast<const OdeBody*>(dGeomGetData(g1));
-  const auto* o2 = static_cast<const OdeBody*>(dGeomGetData(g2));
-  std::vector<dContact> contact(w.settings.maxContactsPerPair);
-  const int n = dCollide(g1, g2, w.settings.maxContactsPerPair, &contact[0].geom, sizeof(dContact));
-  for (int i = 0; i < n; ++i) {
-    dContact& c = contact[i];
-    c.surface.mode = dContactApprox1 | dContactBounce;
-    c.surface.mu = std::sqrt(o1->friction * o2->friction);
-    c.surface.bounce = std::max(o1->restitution, o2->restitution);
-    c.surface.bounce_vel = dynamics::kBounceThreshold;
-    w.deepest = std::max(w.deepest, static_cast<double>(c.geom.depth));
-    dJointAttach(dJointCreateContact(w.world, w.contacts, &c), b1, b2);
-  }
-  w.touching += n;
+    probing += std::chrono::steady_clock::now() - start;
+  });
+  record.wallTime -= std::chrono::duration<double>(probing).count();
+  return record;
 }
 
-std::unique_ptr<OdeBody> makeBody(OdeWorld& w, const Scene& scene, const BodySpec& spec) {
-  auto b = std::make_unique<OdeBody>();
-  b->restitution = spec.restitution.value_or(scene.contact.restitution);
-  b->friction = spec.friction.value_or(scene.contact.friction);
-  if (spec.shapeType == "box") {
-    b->geom = dCreateBox(w.space, spec.boxSize.x(), spec.boxSize.y(), spec.boxSize.z());
-  } else {
-    for (const Eigen::Vector3d& v : spec.mesh.vertices) b->vertices.insert(b->vertices.end(), {v.x(), v.y(), v.z()});
-    for (const auto& f : spec.mesh.faces)
-      for (size_t k = 1; k + 1 < f.size(); ++k)
-        b->indices.insert(b->indices.end(), {static_cast<dTriIndex>(f[0]), static_cast<dTriIndex>(f[k]),
-                                             static_cast<dTriIndex>(f[k + 1])});
-    b->meshData = dGeomTriMeshDataCreate();
-    dGeomTriMeshDataBuildDouble(b->meshData, b->vertices.data(), 3 * sizeof(double),
-                                static_cast<int>(spec.mesh.vertices.size()), b->indices.data(),
-                                static_cast<int>(b->indices.size()), 3 * sizeof(dTriIndex));
-    b->geom = dCreateTriMesh(w.space, b->meshData, nullptr, nullptr, nullptr);
-  }
-  dGeomSetData(b->geom, b.get());
-  dQuaternion q = {spec.orientation.w(), spec.orientation.x(), spec.orientation.y(), spec.orientation.z()};
-  if (spec.isStatic) {
-    dGeomSetPosition(b->geom, spec.position.x(), spec.position.y(), spec.position.z());
-    dGeomSetQuaternion(b->geom, q);
-    return b;
-  }
-  auto props = dynamics::computeMassProperties(spec.mesh.vertices, spec.mesh.faces, spec.density.value_or(1000.0));
-  if (spec.mass) props = dynamics::withMass(props, *spec.mass);
-  b->mass = props.mass;
-  b->inertia = props.inertia;
-  b->centerOfMassLocal = props.centerOfMass;
-  for (const Eigen::Vector3d& v : spec.mesh.vertices) b->size = std::max(b->size, (v - props.centerOfMass).norm());
-  b->body = dBodyCreate(w.world);
-  dMass m;
-  const Eigen::Matrix3d& I = props.inertia;
-  dMassSetParameters(&m, props.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
-  dBodySetMass(b->body, &m);
-  const Eigen::Vector3d com = spec.position + spec.orientation * props.centerOfMass;
-  dBodySetPosition(b->body, com.x(), com.y(), com.z());
-  dBodySetQuaternion(b->body, q);
-  dBodySetLinearVel(b->body, spec.velocity.x(), spec.velocity.y(), spec.velocity.z());
-  dBodySetAngularVel(b->body, spec.angularVelocity.x(), spec.angularVelocity.y(), spec.angularVelocity.z());
-  dGeomSetBody(b->geom, b->body);
-  dGeomSetOffsetPosition(b->geom, -props.centerOfMass.x(), -props.centerOfMass.y(), -props.centerOfMass.z());
-  return b;
-}
-
-Eigen::Quaterniond orientationOf(const OdeBody& b) {
-  const dReal* q = dBodyGetQuaternion(b.body);
-  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-}
-
-double energyOf(const OdeWorld& w, const Eigen::Vector3d& gravity) {
-  double e = 0.0;
-  for (const auto& b : w.bodies) {
-    if (!b->body) continue;
-    const Eigen::Matrix3d R = orientationOf(*b).toRotationMatrix();
-    const Eigen::Vector3d v = vec(dBodyGetLinearVel(b->body)), omega = R.transpose() * vec(dBodyGetAngularVel(b->body));
-    e += 0.5 * b->mass * v.squaredNorm() + 0.5 * omega.dot(b->inertia * omega) - b->mass * gravity.dot(vec(dBodyGetPosition(b->body)));
-  }
-  return e;
+nlohmann::ordered_json bodyComparison(const Scene& scene, const BodyState& start, const BodyState& a, const BodyState& b) {
+  const Eigen::Vector3d up = upOf(scene);
+  auto drift = [&](const BodyState& end) {
+    const Eigen::Vector3d moved = end.position - start.position;
+    return forOutput((moved - moved.dot(up) * up).norm());
+  };
+  auto heightChange = [&](const BodyState& end) { return forOutput((end.position - start.position).dot(up)); };
+  return {{"name", a.name},
+          {"position_difference", forOutput((a.position - b.position).norm())},
+          {"orientation_difference_rad", forOutput(a.orientation.angularDistance(b.orientation))},
+          {"at_rest", {a.atRest, b.atRest}},
+          {"drift", {drift(a), drift(b)}},
+          {"height_change", {heightChange(a), heightChange(b)}}};
 }
 
 }  // namespace
 
 nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings) {
-  static const OdeLibrary library;
-  checkInitialState(scene);
-  const double dt = options.dt.value_or(scene.dt);
-  const long steps = std::lround(options.duration.value_or(scene.duration) / dt);
-  OdeWorld w;
-  w.settings = settings;
-  w.world = dWorldCreate();
-  w.space = dHashSpaceCreate(nullptr);
-  w.contacts = dJointGroupCreate(0);
-  dWorldSetGravity(w.world, scene.gravity.x(), scene.gravity.y(), scene.gravity.z());
-  dWorldSetERP(w.world, settings.erp);
-  dWorldSetCFM(w.world, settings.cfm);
-  dWorldSetQuickStepNumIterations(w.world, settings.quickStepIterations);
-  for (const BodySpec& spec : scene.bodies) w.bodies.push_back(makeBody(w, scene, spec));
-
-  const double initialEnergy = energyOf(w, scene.gravity);
-  double maxIncrease = 0.0, maxPenetration = 0.0, firstContact = -1.0;
-  const auto start = std::chrono::steady_clock::now();
-  for (long k = 0; k < steps; ++k) {
-    w.deepest = 0.0;
-    w.touching = 0;
-    dSpaceCollide(w.space, &w, &nearCallback);
-    if (w.touching > 0 && firstContact < 0) firstContact = k * dt;
-    maxPenetration = std::max(maxPenetration, w.deepest);
-    if (settings.quickStep) dWorldQuickStep(w.world, dt);
-    else dWorldStep(w.world, dt);
-    dJointGroupEmpty(w.contacts);
-    maxIncrease = std::max(maxIncrease, energyOf(w, scene.gravity) - initialEnergy);
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
-  for (size_t i = 0; i < w.bodies.size(); ++i) {
-    const OdeBody& b = *w.bodies[i];
-    if (!b.body) continue;
-    const Eigen::Quaterniond q = orientationOf(b);
-    const Eigen::Vector3d v = vec(dBodyGetLinearVel(b.body)), omega = vec(dBodyGetAngularVel(b.body));
-    const Eigen::Vector3d origin = vec(dBodyGetPosition(b.body)) - q * b.centerOfMassLocal;
-    nlohmann::ordered_json state = bodyStateToJson(scene.bodies[i].name, origin, q, v, omega);
-    state["at_rest"] = dynamics::atRest(v, omega, b.size);
-    bodies.push_back(state);
-  }
+  OdeWorld world(scene, settings);
+  const RunRecord record = recordRun(world, stepsOf(scene, options), options.dt.value_or(scene.dt), scene.gravity);
   nlohmann::ordered_json summary;
   summary["engine"] = "ode";
-  summary["scene"] = scene.name;
-  summary["steps"] = steps;
-  summary["sim_time"] = forOutput(steps * dt);
-  summary["wall_time_s"] = wall;
-  summary["first_contact_time"] = firstContact < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(forOutput(firstContact));
-  summary["max_penetration"] = forOutput(maxPenetration);
-  summary["energy"] = {{"initial", forOutput(initialEnergy)},
-                       {"final", forOutput(energyOf(w, scene.gravity))},
-                       {"max_increase", forOutput(maxIncrease)}};
-  summary["bodies"] = bodies;
-  summary["settings"] = {{"stepper", settings.quickStep ? "quickstep" : "worldstep"},
-                         {"iterations", settings.quickStepIterations},
-                         {"erp", settings.erp},
-                         {"cfm", settings.cfm}};
+  summary.update(summaryToJson(scene.name, record));
+  summary["settings"] = settingsToJson(settings);
   return summary;
 }
 
 nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings) {
-  nlohmann::ordered_json mine = runScene(scene, options);
-  const nlohmann::ordered_json ode = runOde(scene, options, settings);
+  ContactAgreement agreement;
+  const RunRecord mine = runPolysimComparingContacts(scene, options, agreement);
+  OdeWorld odeWorld(scene, settings);
+  const RunRecord ode = recordRun(odeWorld, stepsOf(scene, options), options.dt.value_or(scene.dt), scene.gravity);
+
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
-  for (size_t i = 0; i < mine["bodies"].size(); ++i) {
-    const auto& a = mine["bodies"][i];
-    const auto& b = ode["bodies"][i];
-    const Eigen::Vector3d pa(a["position"][0], a["position"][1], a["position"][2]);
-    const Eigen::Vector3d pb(b["position"][0], b["position"][1], b["position"][2]);
-    const Eigen::Quaterniond qa(a["orientation"][0], a["orientation"][1], a["orientation"][2], a["orientation"][3]);
-    const Eigen::Quaterniond qb(b["orientation"][0], b["orientation"][1], b["orientation"][2], b["orientation"][3]);
-    bodies.push_back({{"name", a["name"]},
-                      {"position_difference", forOutput((pa - pb).norm())},
-                      {"orientation_difference_rad", forOutput(qa.angularDistance(qb))},
-                      {"at_rest", {a["at_rest"], b["at_rest"]}}});
+  for (size_t i = 0; i < mine.final.size(); ++i) bodies.push_back(bodyComparison(scene, mine.initial[i], mine.final[i], ode.final[i]));
+  std::vector<std::string> findings;
+  addFindings("polysim", scene, mine, findings);
+  addFindings("ode", scene, ode, findings);
+  for (size_t i = 0; i < mine.final.size(); ++i) {
+    const double apart = (mine.final[i].position - ode.final[i].position).norm();
+    if (apart > kFindingPositionDifference)
+      findings.push_back(mine.final[i].name + " ends " + number(apart) + " m apart in the two engines");
+    if (mine.final[i].atRest != ode.final[i].atRest)
+      findings.push_back(mine.final[i].name + " is at rest at the end in " + (mine.final[i].atRest ? "polysim" : "ode") +
+                         " only");
   }
+
+  auto both = [](const auto& a, const auto& b) { return nlohmann::ordered_json::array({a, b}); };
+  auto time = [](const std::optional<double>& t) { return t ? nlohmann::ordered_json(forOutput(*t)) : nlohmann::ordered_json(nullptr); };
   nlohmann::ordered_json comparison;
-  comparison["first_contact_time"] = {mine["first_contact_time"], ode["first_contact_time"]};
-  comparison["max_penetration"] = {mine["max_penetration"], ode["max_penetration"]};
-  comparison["energy_final"] = {mine["energy"]["final"], ode["energy"]["final"]};
-  comparison["wall_time_s"] = {mine["wall_time_s"], ode["wall_time_s"]};
+  comparison["first_contact_time"] = both(time(mine.firstContactTime), time(ode.firstContactTime));
+  comparison["max_penetration"] = both(forOutput(mine.maxPenetration), forOutput(ode.maxPenetration));
+  comparison["energy_final"] = both(forOutput(mine.finalEnergy), forOutput(ode.finalEnergy));
+  comparison["wall_time_s"] = both(mine.wallTime, ode.wallTime);
   comparison["bodies"] = bodies;
-  mine["engine"] = "polysim";
-  return {{"polysim", mine}, {"ode", ode}, {"comparison", comparison}};
+  comparison["contacts"] = agreement.toJson();
+  comparison["findings"] = findings;
+
+  nlohmann::ordered_json polysimSummary = {{"engine", "polysim"}};
+  polysimSummary.update(summaryToJson(scene.name, mine));
+  nlohmann::ordered_json odeSummary = {{"engine", "ode"}};
+  odeSummary.update(summaryToJson(scene.name, ode));
+  odeSummary["settings"] = settingsToJson(settings);
+  return {{"polysim", polysimSummary}, {"ode", odeSummary}, {"comparison", comparison}};
 }
 
 }  // namespace polysim::sim

@@ -1,35 +1,31 @@
 #pragma once
-// ODE (the Open Dynamics Engine) as the reference: a scene built in ODE with the same
-// gravity, step, masses, inertia, friction and restitution, run with ODE's own stepper.
+// `polysim compare`: a scene run in polysim and in ODE with the same settings, their
+// summaries side by side, and where they disagree.
 
 #include <nlohmann/json.hpp>
 
+#include "sim/ode_world.h"
 #include "sim/run.h"
 #include "sim/scene.h"
 
 namespace polysim::sim {
 
-/// How ODE is set up. ERP and CFM are ODE's error-reduction and constraint-force-mixing
-/// parameters; contacts use ODE's friction pyramid scaled by the normal force
-/// (dContactApprox1), mu = the pair's friction, bounce = the pair's restitution above
-/// the same bounce threshold as polysim's solver.
-struct OdeSettings {
-  bool quickStep = true;        // dWorldQuickStep; false: dWorldStep (the direct solver)
-  int quickStepIterations = 20;
-  double erp = 0.2;             // ODE's default
-  double cfm = 1e-9;            // near-rigid contacts (ODE's double-precision default is 1e-10)
-  int maxContactsPerPair = 64;
-};
-
-/// Runs the scene in ODE and returns the same summary as runScene (SPEC.md), plus
-/// "engine": "ode". Boxes are dBox (ODE's best path), other shapes dTriMesh (faces
-/// fanned into triangles); static bodies are static geoms. Bodies sit at their centre of
-/// mass with the geometry offset, since ODE requires it. max_penetration is the deepest
-/// contact depth ODE reported at any step.
+/// Runs the scene in ODE and returns SPEC.md's summary plus "engine": "ode" and the
+/// "settings" used (stepper, iterations, erp, cfm). max_penetration is the deepest
+/// contact depth ODE reported at any step; first_contact_time the start of the first step
+/// whose collision pass found a contact.
 nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings = {});
 
-/// `polysim compare`: both summaries and the differences of their trajectories (first
-/// contact time, final poses, at-rest states, maximum penetration, energy).
+/// Both summaries and their comparison:
+/// - per body: position and orientation differences, at_rest, drift (horizontal
+///   displacement from the start, m) and height change (m), each [polysim, ode];
+/// - first contact time, maximum penetration, final energy, wall time, [polysim, ode];
+/// - contacts: at every step's end where polysim has contacts, ODE is asked about the same
+///   poses (see kOdePressFactor) and the largest disagreements are reported with where
+///   they happened (ContactAgreement);
+/// - findings: plain sentences for what went wrong in either engine (overlap beyond ten
+///   tolerances, energy gained, a body below every static body, a body drifting more than
+///   1 cm, at-rest states that differ), so that known ODE failures are shown, not hidden.
 nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings = {});
 
 }  // namespace polysim::sim

@@ -1,13 +1,12 @@
 #include "sim/run.h"
 
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
 
-#include "sim/json_output.h"
+#include "sim/polysim_engine.h"
+#include "sim/run_record.h"
 #include "sim/step_log.h"
-#include "sim/world.h"
 
 namespace polysim::sim {
 namespace {
@@ -34,49 +33,20 @@ class ProgressBar {
 
 nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
   const double dt = options.dt.value_or(scene.dt);
-  const double duration = options.duration.value_or(scene.duration);
-  const long steps = std::lround(duration / dt);
-  World world(scene, options.method);
+  const long steps = std::lround(options.duration.value_or(scene.duration) / dt);
+  PolysimEngine engine(scene, options.method);
   std::unique_ptr<StepLog> log;
   if (!options.logPath.empty()) log = std::make_unique<StepLog>(options.logPath);
   std::unique_ptr<ProgressBar> bar;
   if (options.progress) bar = std::make_unique<ProgressBar>(steps);
 
-  const double initialEnergy = world.energy();
-  double maxIncrease = 0.0, maxPenetration = 0.0;
-  long eventLimitSteps = 0;
-  const auto start = std::chrono::steady_clock::now();
-  for (long k = 0; k < steps; ++k) {
-    const StepReport& report = world.step(dt);
-    maxIncrease = std::max(maxIncrease, world.energy() - initialEnergy);
-    maxPenetration = std::max(maxPenetration, report.penetration);
-    eventLimitSteps += report.eventLimitHit;
-    if (log) log->write(world, report);
-    if (bar) bar->update(k + 1);
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
-  for (size_t i = 0; i < world.bodies().size(); ++i) {
-    const dynamics::RigidBody& b = world.bodies()[i];
-    if (b.isStatic) continue;
-    nlohmann::ordered_json state =
-        bodyStateToJson(scene.bodies[i].name, b.position, b.orientation, b.velocity, b.angularVelocity);
-    state["at_rest"] = world.atRest(static_cast<int>(i));
-    bodies.push_back(state);
-  }
-  nlohmann::ordered_json summary;
-  summary["scene"] = scene.name;
-  summary["steps"] = steps;
-  summary["sim_time"] = forOutput(world.time());
-  summary["wall_time_s"] = wall;
-  summary["first_contact_time"] =
-      world.firstContactTime() < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(forOutput(world.firstContactTime()));
-  summary["max_penetration"] = forOutput(maxPenetration);
-  summary["energy"] = {{"initial", forOutput(initialEnergy)},
-                       {"final", forOutput(world.energy())},
-                       {"max_increase", forOutput(maxIncrease)}};
-  summary["bodies"] = bodies;
+  long eventLimitSteps = 0, done = 0;
+  const RunRecord record = recordRun(engine, steps, dt, scene.gravity, [&] {
+    eventLimitSteps += engine.lastReport().eventLimitHit;
+    if (log) log->write(engine.world(), engine.lastReport());
+    if (bar) bar->update(++done);
+  });
+  nlohmann::ordered_json summary = summaryToJson(scene.name, record);
   summary["event_limit_steps"] = eventLimitSteps;
   return summary;
 }

@@ -11,7 +11,7 @@
 #include "collision/intersection.h"
 #include "collision/shapes.h"
 #include "collision/tolerances.h"
-#include "tests/bench/ode_geometry.h"
+#include "sim/ode_geometry.h"
 #include "tests/poses.h"
 
 namespace polysim::bench {
@@ -20,13 +20,6 @@ namespace {
 using V3 = Eigen::Vector3d;
 using collision::ObjectDatabase;
 using collision::PolygonMesh;
-
-struct OdeSession {
-  OdeSession() { dInitODE2(0); }
-  ~OdeSession() { dCloseODE(); }
-};
-const OdeSession kOde;
-
 using test::pose;
 
 // Sphere B turned so that one of its vertices faces sphere A along the centre line.
@@ -65,9 +58,9 @@ void BM_Polysim_Icospheres(benchmark::State& state) {
 
 void BM_Ode_Icospheres(benchmark::State& state) {
   const SpherePair pair(static_cast<int>(state.range(0)), state.range(1) / 100.0);
-  OdeTriMesh a(pair.mesh), b(pair.mesh);
-  setPose(a.geom(), pair.X_A);
-  setPose(b.geom(), pair.X_B);
+  const sim::OdeGeom a = sim::OdeGeom::triMesh(pair.mesh), b = sim::OdeGeom::triMesh(pair.mesh);
+  sim::setPose(a.geom(), pair.X_A);
+  sim::setPose(b.geom(), pair.X_B);
   dContactGeom contact[1];
   int n = 0;
   for (auto _ : state) {
@@ -112,16 +105,15 @@ void BM_Polysim_BoxOnFloor(benchmark::State& state) {
 
 void BM_Ode_BoxOnFloor(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0));
-  OdeTriMesh floor(collision::makeTriangulatedFloor(10, 10, k));
-  dGeomID box = dCreateBox(nullptr, 1, 1, 1);
-  setPose(box, pose(V3(0.05, 0.05, 0.5 - kSink)));
+  const sim::OdeGeom floor = sim::OdeGeom::triMesh(collision::makeTriangulatedFloor(10, 10, k));
+  const sim::OdeGeom box = sim::OdeGeom::box(V3(1, 1, 1));
+  sim::setPose(box.geom(), pose(V3(0.05, 0.05, 0.5 - kSink)));
   std::vector<dContactGeom> contacts(1000);
   int n = 0;
   for (auto _ : state) {
-    n = dCollide(box, floor.geom(), 1000, contacts.data(), sizeof(dContactGeom));
+    n = dCollide(box.geom(), floor.geom(), 1000, contacts.data(), sizeof(dContactGeom));
     benchmark::DoNotOptimize(n);
   }
-  dGeomDestroy(box);
   state.counters["triangles"] = 2.0 * k * k;
   state.counters["contacts"] = n;
 }

@@ -1,4 +1,5 @@
-// The ODE baseline: the same scenes in ODE agree with polysim where both are right.
+// The ODE baseline: the same scenes in ODE agree with polysim where both are right, the
+// contact comparison sees the same contacts, and what ODE cannot model is refused.
 
 #include "sim/ode_baseline.h"
 
@@ -11,14 +12,26 @@ Scene scene(const std::string& name) { return loadScene(std::string(POLYSIM_SCEN
 
 double z(const nlohmann::ordered_json& body) { return body["position"][2].get<double>(); }
 
-TEST(OdeBaseline, DropBoxRestsAtHalfItsHeightInBothEngines) {
-  const nlohmann::ordered_json c = compareWithOde(scene("drop_box"), {});
+TEST(OdeBaseline, DropBoxRestsAtHalfItsHeightInBothEnginesWithTheSameContacts) {
+  const Scene drop = scene("drop_box");
+  const nlohmann::ordered_json c = compareWithOde(drop, {});
   EXPECT_NEAR(z(c["polysim"]["bodies"][0]), 0.5, 1e-3);
   EXPECT_NEAR(z(c["ode"]["bodies"][0]), 0.5, 1e-3);
   EXPECT_TRUE(c["ode"]["bodies"][0]["at_rest"].get<bool>());
-  // Both first touch within a step of each other.
-  EXPECT_NEAR(c["comparison"]["first_contact_time"][0].get<double>(), c["comparison"]["first_contact_time"][1].get<double>(),
-              scene("drop_box").dt);
+  // Both first touch within a step of each other, near the analytic sqrt(2 * 1.5 / 9.81).
+  const double analytic = std::sqrt(2 * 1.5 / 9.81);
+  EXPECT_NEAR(c["comparison"]["first_contact_time"][0].get<double>(), analytic, drop.dt);
+  EXPECT_NEAR(c["comparison"]["first_contact_time"][1].get<double>(), analytic, drop.dt);
+
+  // Every resting state was handed to ODE, which saw the same face contact: the same
+  // normal, its points on polysim's square, its depth the press less polysim's separation.
+  const auto& contacts = c["comparison"]["contacts"];
+  EXPECT_GT(contacts["pairs"].get<long>(), 500);
+  EXPECT_EQ(contacts["ode_missed"]["count"], 0);
+  EXPECT_LT(contacts["normal_angle_rad"]["max"].get<double>(), 1e-6);
+  EXPECT_LT(contacts["point_distance"]["max"].get<double>(), 1e-6);
+  EXPECT_LT(contacts["depth_error"]["max"].get<double>(), drop.contact.tolerance);
+  EXPECT_EQ(contacts["depth_error"]["pair"], "box/ground");
 }
 
 TEST(OdeBaseline, StackOfFiveStandsInBothEngines) {
@@ -27,11 +40,27 @@ TEST(OdeBaseline, StackOfFiveStandsInBothEngines) {
   const nlohmann::ordered_json c = compareWithOde(scene("stack_5"), shorter);
   for (const char* engine : {"polysim", "ode"})
     for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(z(c[engine]["bodies"][k]), 0.5 + k, 1e-2) << engine << " box" << k;
+  for (const auto& body : c["comparison"]["bodies"]) {
+    EXPECT_LT(body["drift"][0].get<double>(), 1e-3) << body["name"];
+    EXPECT_LT(body["drift"][1].get<double>(), 5e-2) << body["name"];
+  }
+  EXPECT_EQ(c["comparison"]["contacts"]["pairs"].get<long>(), 5 * 600);  // 5 touching pairs in each of 600 steps
 }
 
 TEST(OdeBaseline, RampSlideAgreesWithPolysim) {
   const nlohmann::ordered_json c = compareWithOde(scene("ramp_slides"), {});
   EXPECT_LT(c["comparison"]["bodies"][0]["position_difference"].get<double>(), 1e-3);
+  EXPECT_LT(c["comparison"]["contacts"]["normal_angle_rad"]["max"].get<double>(), 1e-3);
+}
+
+TEST(OdeBaseline, FindingsNameABodyThatLeftEveryStaticBodyBehind) {
+  RunOptions longer;
+  longer.duration = 4.0;  // the box slides off the 8 m ramp and falls below it
+  const nlohmann::ordered_json c = compareWithOde(scene("ramp_slides"), longer);
+  int fellOff = 0;
+  for (const auto& f : c["comparison"]["findings"])
+    fellOff += f.get<std::string>().find("box ended at height") != std::string::npos;
+  EXPECT_EQ(fellOff, 2);  // in both engines
 }
 
 TEST(OdeBaseline, SummaryHasSpecFieldsAndTheSettingsUsed) {
@@ -40,6 +69,38 @@ TEST(OdeBaseline, SummaryHasSpecFieldsAndTheSettingsUsed) {
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_EQ(s["settings"]["stepper"], "quickstep");
   EXPECT_EQ(s["settings"]["iterations"], 20);
+}
+
+TEST(OdeBaseline, TheLinkedOdeIsDoublePrecisionWithTriangleMeshes) {
+  const OdeCapabilities ode = OdeCapabilities::ofLinkedLibrary();
+  EXPECT_TRUE(ode.doublePrecision);
+  EXPECT_TRUE(ode.triMesh);
+  EXPECT_NO_THROW(checkOdeCanModel(scene("cup_catch"), ode));
+}
+
+TEST(OdeBaseline, RefusesMeshesWhenOdeHasNoTriangleMeshCollider) {
+  OdeCapabilities boxesOnly;
+  boxesOnly.triMesh = false;
+  EXPECT_NO_THROW(checkOdeCanModel(scene("drop_box"), boxesOnly));
+  try {
+    checkOdeCanModel(scene("cup_catch"), boxesOnly);
+    FAIL() << "the cup is a mesh";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cup_catch.json"), std::string::npos) << message;
+    EXPECT_NE(message.find("body \"cup\": shape"), std::string::npos) << message;
+    EXPECT_NE(message.find("triangle-mesh collider"), std::string::npos) << message;
+    EXPECT_EQ(message.find("\"box\""), std::string::npos) << "boxes are dBox: " << message;
+  }
+}
+
+TEST(OdeBaseline, RefusesMeshesBeyondSixteenBitIndicesAndSinglePrecision) {
+  OdeCapabilities small;
+  small.maxTriMeshVertices = 8;  // the cup has 16 vertices
+  EXPECT_THROW(checkOdeCanModel(scene("cup_catch"), small), SceneError);
+  OdeCapabilities single;
+  single.doublePrecision = false;
+  EXPECT_THROW(checkOdeCanModel(scene("drop_box"), single), SceneError);
 }
 
 }  // namespace

@@ -1,0 +1,63 @@
+#include "sim/run_record.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "sim/json_output.h"
+
+namespace polysim::sim {
+
+RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& gravity,
+                    const std::function<void()>& afterStep) {
+  const Eigen::Vector3d up = gravity.isZero() ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-gravity.normalized());
+  RunRecord r;
+  r.steps = steps;
+  r.initial = engine.bodyStates();
+  r.initialEnergy = engine.energy();
+  r.apexAfterFirstContact.assign(r.initial.size(), std::numeric_limits<double>::quiet_NaN());
+  const auto start = std::chrono::steady_clock::now();
+  for (long k = 0; k < steps; ++k) {
+    engine.step(dt);
+    r.maxEnergyIncrease = std::max(r.maxEnergyIncrease, engine.energy() - r.initialEnergy);
+    r.maxPenetration = std::max(r.maxPenetration, engine.stepPenetration());
+    if (engine.firstContactTime()) {
+      const std::vector<BodyState> states = engine.bodyStates();
+      for (size_t i = 0; i < states.size(); ++i) {
+        const double height = states[i].position.dot(up);
+        if (!(r.apexAfterFirstContact[i] >= height)) r.apexAfterFirstContact[i] = height;  // NaN-aware max
+      }
+    }
+    if (afterStep) afterStep();
+  }
+  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.simTime = steps * dt;
+  r.firstContactTime = engine.firstContactTime();
+  r.finalEnergy = engine.energy();
+  r.final = engine.bodyStates();
+  return r;
+}
+
+nlohmann::ordered_json summaryToJson(const std::string& sceneName, const RunRecord& r) {
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (const BodyState& b : r.final) {
+    nlohmann::ordered_json state = bodyStateToJson(b.name, b.position, b.orientation, b.velocity, b.angularVelocity);
+    state["at_rest"] = b.atRest;
+    bodies.push_back(state);
+  }
+  nlohmann::ordered_json summary;
+  summary["scene"] = sceneName;
+  summary["steps"] = r.steps;
+  summary["sim_time"] = forOutput(r.simTime);
+  summary["wall_time_s"] = r.wallTime;
+  summary["first_contact_time"] =
+      r.firstContactTime ? nlohmann::ordered_json(forOutput(*r.firstContactTime)) : nlohmann::ordered_json(nullptr);
+  summary["max_penetration"] = forOutput(r.maxPenetration);
+  summary["energy"] = {{"initial", forOutput(r.initialEnergy)},
+                       {"final", forOutput(r.finalEnergy)},
+                       {"max_increase", forOutput(r.maxEnergyIncrease)}};
+  summary["bodies"] = bodies;
+  return summary;
+}
+
+}  // namespace polysim::sim

@@ -1,0 +1,35 @@
+#pragma once
+// A whole run of either engine, measured the same way: what SPEC.md's summary prints and
+// what the sweep scores against analytic answers.
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "sim/engine.h"
+
+namespace polysim::sim {
+
+struct RunRecord {
+  long steps = 0;
+  double simTime = 0.0;   // s
+  double wallTime = 0.0;  // s, stepping only (building the scene is not counted)
+  std::optional<double> firstContactTime;  // s
+  double maxPenetration = 0.0;             // m, deepest overlap in any step
+  double initialEnergy = 0.0, finalEnergy = 0.0, maxEnergyIncrease = 0.0;  // J
+  std::vector<BodyState> initial, final;   // dynamic bodies, scene order
+  /// Per dynamic body: the highest its origin rose along -gravity (m) after the first
+  /// contact, sampled at step ends; the apex of its first rebound. NaN with no contact.
+  std::vector<double> apexAfterFirstContact;
+};
+
+/// Steps `engine` `steps` times by dt, calling afterStep (when given) after each step.
+RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& gravity,
+                    const std::function<void()>& afterStep = {});
+
+/// SPEC.md's summary of a run: scene, steps, sim_time, wall_time_s, first_contact_time,
+/// max_penetration, energy, bodies.
+nlohmann::ordered_json summaryToJson(const std::string& sceneName, const RunRecord& record);
+
+}  // namespace polysim::sim
