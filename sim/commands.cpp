@@ -1,13 +1,17 @@
 #include "sim/commands.h"
 
+#include <cstdio>
+#include <fstream>
 #include <ostream>
 #include <stdexcept>
 
 #include "collision/time_of_contact.h"
 #include "sim/json_output.h"
 #include "sim/kinematic_motion.h"
+#include "sim/ode_baseline.h"
 #include "sim/run.h"
 #include "sim/scene.h"
+#include "sim/sweep.h"
 
 namespace polysim::sim {
 namespace {
@@ -66,6 +70,31 @@ int tocCommand(const std::string& scenePath, double interval, const std::string&
   j["stopped_by"] = collision::toString(r.stoppedBy);
   j["subintervals"] = r.subintervals;
   out << j.dump() << "\n";
+  return 0;
+}
+
+int compareCommand(const std::string& scenePath, const RunOptions& options, const OdeSettings& ode, std::ostream& out) {
+  out << compareWithOde(loadScene(scenePath), options, ode).dump() << "\n";
+  return 0;
+}
+
+int sweepCommand(const SweepOptions& options, const std::string& outPath, std::ostream& out, std::ostream* progress) {
+  const std::vector<SweepRow> rows = runSweep(options, progress);
+  if (outPath.empty()) {
+    writeSweepCsv(rows, out);
+    return 0;
+  }
+  const std::string partial = outPath + ".partial";
+  {
+    std::ofstream file(partial);
+    if (!file) throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
+    writeSweepCsv(rows, file);
+    if (!file.flush()) throw std::runtime_error(outPath + ": writing the sweep's CSV failed");
+  }
+  if (std::rename(partial.c_str(), outPath.c_str()) != 0) {
+    std::remove(partial.c_str());
+    throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
+  }
   return 0;
 }
 

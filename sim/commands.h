@@ -19,4 +19,16 @@ int runCommand(const std::string& scenePath, const struct RunOptions& options, s
 /// the scene's dt. `method` is "bisection" or "regula-falsi".
 int tocCommand(const std::string& scenePath, double interval, const std::string& method, std::ostream& out);
 
+/// `polysim compare SCENE [--duration S] [--dt S]`: both engines' summaries and their
+/// comparison (ode_baseline.h).
+int compareCommand(const std::string& scenePath, const struct RunOptions& options, const struct OdeSettings& ode,
+                   std::ostream& out);
+
+/// `polysim sweep [--scenes DIR] [--quick] [--out FILE]`: the speed-versus-accuracy CSV
+/// (sweep.h). With a file, the CSV is written whole at the end (to FILE.partial, then
+/// renamed), so that an interrupted sweep leaves no half-written file; otherwise to `out`.
+/// `progress`, when given, gets a line per run.
+int sweepCommand(const struct SweepOptions& options, const std::string& outPath, std::ostream& out,
+                 std::ostream* progress);
+
 }  // namespace polysim::sim

@@ -105,16 +105,22 @@ nlohmann::ordered_json bodyComparison(const Scene& scene, const BodyState& start
           {"height_change", {heightChange(a), heightChange(b)}}};
 }
 
+nlohmann::ordered_json odeSummary(const Scene& scene, const RunRecord& record, const OdeWorld& world,
+                                  const OdeSettings& settings) {
+  nlohmann::ordered_json summary = {{"engine", "ode"}};
+  summary.update(summaryToJson(scene.name, record));
+  summary["settings"] = settingsToJson(settings);
+  summary["ode_messages"] = {{"count", world.messages()},
+                             {"last", world.messages() > 0 ? nlohmann::ordered_json(odeMessages().last) : nullptr}};
+  return summary;
+}
+
 }  // namespace
 
 nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings) {
   OdeWorld world(scene, settings);
   const RunRecord record = recordRun(world, stepsOf(scene, options), options.dt.value_or(scene.dt), scene.gravity);
-  nlohmann::ordered_json summary;
-  summary["engine"] = "ode";
-  summary.update(summaryToJson(scene.name, record));
-  summary["settings"] = settingsToJson(settings);
-  return summary;
+  return odeSummary(scene, record, world, settings);
 }
 
 nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings) {
@@ -128,6 +134,8 @@ nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& opti
   std::vector<std::string> findings;
   addFindings("polysim", scene, mine, findings);
   addFindings("ode", scene, ode, findings);
+  if (odeWorld.messages() > 0)
+    findings.push_back("ode: " + std::to_string(odeWorld.messages()) + " solver warnings, the last \"" + odeMessages().last + "\"");
   for (size_t i = 0; i < mine.final.size(); ++i) {
     const double apart = (mine.final[i].position - ode.final[i].position).norm();
     if (apart > kFindingPositionDifference)
@@ -150,10 +158,7 @@ nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& opti
 
   nlohmann::ordered_json polysimSummary = {{"engine", "polysim"}};
   polysimSummary.update(summaryToJson(scene.name, mine));
-  nlohmann::ordered_json odeSummary = {{"engine", "ode"}};
-  odeSummary.update(summaryToJson(scene.name, ode));
-  odeSummary["settings"] = settingsToJson(settings);
-  return {{"polysim", polysimSummary}, {"ode", odeSummary}, {"comparison", comparison}};
+  return {{"polysim", polysimSummary}, {"ode", odeSummary(scene, ode, odeWorld, settings)}, {"comparison", comparison}};
 }
 
 }  // namespace polysim::sim

@@ -1,5 +1,7 @@
 #include "sim/ode_geometry.h"
 
+#include <cstdarg>
+#include <cstdio>
 #include <utility>
 
 #include "collision/tolerances.h"
@@ -62,12 +64,30 @@ void setPose(dGeomID geom, const Eigen::Isometry3d& X) {
   dGeomSetRotation(geom, R);
 }
 
+namespace {
+
+OdeMessageLog messageLog;
+
+void countMessage(int errnum, const char* format, va_list arguments) {
+  char text[256];
+  std::vsnprintf(text, sizeof text, format, arguments);
+  ++messageLog.count;
+  messageLog.last = "ODE message " + std::to_string(errnum) + ": " + text;
+}
+
+}  // namespace
+
 void ensureOdeInitialised() {
   struct OdeLibrary {
-    OdeLibrary() { dInitODE2(0); }
+    OdeLibrary() {
+      dInitODE2(0);
+      dSetMessageHandler(&countMessage);
+    }
     ~OdeLibrary() { dCloseODE(); }
   };
   static const OdeLibrary library;
 }
+
+const OdeMessageLog& odeMessages() { return messageLog; }
 
 }  // namespace polysim::sim

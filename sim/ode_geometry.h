@@ -6,6 +6,7 @@
 #include <ode/ode.h>
 
 #include <Eigen/Geometry>
+#include <string>
 #include <vector>
 
 #include "collision/polygon_mesh.h"
@@ -43,5 +44,14 @@ void setPose(dGeomID geom, const Eigen::Isometry3d& X_WO);
 
 /// ODE's global state, initialised once for the process on first use.
 void ensureOdeInitialised();
+
+/// ODE's warnings (dMessage, such as dWorldStep's "LCP internal error") are counted here
+/// instead of printed, so that they are reported with the run they belong to instead of
+/// flooding stderr. Process-wide: a run reads the count before and after.
+struct OdeMessageLog {
+  long count = 0;
+  std::string last;  // the latest message's text
+};
+const OdeMessageLog& odeMessages();
 
 }  // namespace polysim::sim

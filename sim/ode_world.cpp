@@ -59,6 +59,7 @@ OdeGeom makeOdeGeom(const BodySpec& body, dSpaceID space) {
 OdeWorld::OdeWorld(const Scene& scene, const OdeSettings& settings) : scene_(scene), settings_(settings) {
   checkOdeCanModel(scene, OdeCapabilities::ofLinkedLibrary());
   checkInitialState(scene);
+  messagesBefore_ = odeMessages().count;
   world_ = dWorldCreate();
   space_ = dHashSpaceCreate(nullptr);
   contactJoints_ = dJointGroupCreate(0);

@@ -55,6 +55,8 @@ class OdeWorld : public Engine {
   /// The deepest contact depth ODE reported in the last step's collision pass.
   double stepPenetration() const override { return deepest_; }
   std::optional<double> firstContactTime() const override { return firstContact_; }
+  /// ODE's warnings since this world was built (see OdeMessageLog).
+  long messages() const { return odeMessages().count - messagesBefore_; }
 
  private:
   struct Body;
@@ -70,6 +72,7 @@ class OdeWorld : public Engine {
   double time_ = 0.0;
   double deepest_ = 0.0;
   std::optional<double> firstContact_;
+  long messagesBefore_ = 0;
 };
 
 /// ODE geoms of the scene's bodies without a world: ODE's collision test alone, for

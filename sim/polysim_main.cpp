@@ -6,9 +6,10 @@
 
 #include "sim/commands.h"
 #include "sim/log_inspect.h"
-#include "sim/ode_baseline.h"
 #include "sim/run.h"
+#include "sim/ode_world.h"
 #include "sim/scene.h"
+#include "sim/sweep.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"polysim: rigid bodies with polygon-level contact, compared against ODE"};
@@ -51,6 +52,27 @@ int main(int argc, char** argv) {
   compare->add_option("SCENE", scene, "scene file (JSON)")->required();
   compare->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)")->check(CLI::PositiveNumber);
   compare->add_option("--dt", runDt, "step in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  compare->add_option("--method", runMethod, "polysim's time-of-contact method")
+      ->check(CLI::IsMember({"bisection", "regula-falsi"}));
+  polysim::sim::OdeSettings ode;
+  std::string odeStepper = "quickstep";
+  compare->add_option("--ode-stepper", odeStepper, "dWorldQuickStep or dWorldStep")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"quickstep", "worldstep"}));
+  compare->add_option("--ode-iterations", ode.quickStepIterations, "dWorldQuickStep's iterations")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  compare->add_option("--ode-erp", ode.erp, "ODE's error reduction parameter")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  compare->add_option("--ode-cfm", ode.cfm, "ODE's constraint force mixing")->capture_default_str()->check(CLI::NonNegativeNumber);
+
+  polysim::sim::SweepOptions sweepOptions;
+  std::string sweepOut;
+  CLI::App* sweep = app.add_subcommand("sweep", "both engines over their settings on the standard scenes: CSV of cost and error");
+  sweep->add_option("--scenes", sweepOptions.scenesDirectory, "directory holding the standard scenes")
+      ->capture_default_str()
+      ->check(CLI::ExistingDirectory);
+  sweep->add_flag("--quick", sweepOptions.quick, "two steps, one setting per solver, short runs");
+  sweep->add_option("--out", sweepOut, "CSV file (default: standard output)");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -66,14 +88,17 @@ int main(int argc, char** argv) {
     if (compare->parsed()) {
       if (runDuration > 0) runOptions.duration = runDuration;
       if (runDt > 0) runOptions.dt = runDt;
-      std::cout << polysim::sim::compareWithOde(polysim::sim::loadScene(scene), runOptions).dump() << "\n";
-      return 0;
+      runOptions.method = runMethod == "bisection" ? polysim::collision::TocMethod::Bisection
+                                                   : polysim::collision::TocMethod::RegulaFalsi;
+      ode.quickStep = odeStepper == "quickstep";
+      return polysim::sim::compareCommand(scene, runOptions, ode, std::cout);
     }
     if (logCmd->parsed()) {
       if (!logBody.empty()) logQuery.body = logBody;
       polysim::sim::inspectLog(logFile, logQuery, std::cout);
       return 0;
     }
+    if (sweep->parsed()) return polysim::sim::sweepCommand(sweepOptions, sweepOut, std::cout, isatty(STDERR_FILENO) ? &std::cerr : nullptr);
     if (toc->parsed()) return polysim::sim::tocCommand(scene, interval, method, std::cout);
   } catch (const polysim::sim::SceneError& e) {
     std::cerr << e.what() << "\n";

@@ -1,0 +1,125 @@
+#include "sim/sweep.h"
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <stdexcept>
+
+#include "sim/analytic_reference.h"
+#include "sim/ode_world.h"
+#include "sim/polysim_engine.h"
+#include "sim/run_record.h"
+
+namespace polysim::sim {
+namespace {
+
+const BodyState& stateOf(const std::vector<BodyState>& states, const std::string& name) {
+  for (const BodyState& s : states)
+    if (s.name == name) return s;
+  throw std::invalid_argument("the sweep measures body \"" + name + "\", which is not a dynamic body of the scene");
+}
+
+double horizontal(const Eigen::Vector3d& d, const Eigen::Vector3d& up) { return (d - d.dot(up) * up).norm(); }
+
+struct Figure {
+  double measured, analytic;
+};
+
+Figure measure(const std::string& metric, const SweepCase& c, const Scene& scene, const RunRecord& r) {
+  const Eigen::Vector3d up = -scene.gravity.normalized();
+  if (metric == "first_contact_time")  // none: not before the end of the run
+    return {r.firstContactTime.value_or(r.simTime), dropReference(scene, c.body).firstContactTime};
+  if (metric == "rest_height") return {stateOf(r.final, c.body).position.dot(up), dropReference(scene, c.body).restHeight};
+  if (metric == "bounce_apex") {
+    const double apex = r.apexAfterFirstContact[&stateOf(r.final, c.body) - r.final.data()];
+    return {std::isnan(apex) ? stateOf(r.final, c.body).position.dot(up) : apex, dropReference(scene, c.body).bounceApex};
+  }
+  if (metric == "slide_distance")
+    return {(stateOf(r.final, c.body).position - stateOf(r.initial, c.body).position).norm(),
+            inclineSlideDistance(scene, c.body, c.ramp, r.simTime)};
+  if (metric == "stack_drift") {
+    double drift = 0.0;
+    for (size_t i = 0; i < r.final.size(); ++i)
+      drift = std::max(drift, horizontal(r.final[i].position - r.initial[i].position, up));
+    return {drift, 0.0};
+  }
+  if (metric == "max_penetration") return {r.maxPenetration, 0.0};
+  throw std::invalid_argument("unknown sweep metric \"" + metric + "\"");
+}
+
+// One run; `warnings` gets ODE's solver warnings (0 for polysim).
+RunRecord runOnce(const Scene& scene, const SweepCase& c, const SweepSetting& s, long& warnings) {
+  warnings = 0;
+  const long steps = std::lround(c.duration / s.dt);
+  if (s.engine == "polysim") {
+    Scene tuned = scene;
+    tuned.contact.tolerance = s.parameter;
+    PolysimEngine engine(tuned, s.solver == "bisection" ? collision::TocMethod::Bisection : collision::TocMethod::RegulaFalsi);
+    return recordRun(engine, steps, s.dt, scene.gravity);
+  }
+  OdeSettings ode;
+  ode.quickStep = s.solver == "quickstep";
+  if (ode.quickStep) ode.quickStepIterations = static_cast<int>(s.parameter);
+  OdeWorld engine(scene, ode);
+  RunRecord record = recordRun(engine, steps, s.dt, scene.gravity);
+  warnings = engine.messages();
+  return record;
+}
+
+}  // namespace
+
+std::vector<SweepCase> standardSweepCases(bool quick) {
+  return {{"drop_box", quick ? 2.0 : 3.0, {"first_contact_time", "rest_height", "max_penetration"}, "box", ""},
+          {"bounce", 1.5, {"bounce_apex"}, "box", ""},
+          {"ramp_slides", 1.0, {"slide_distance"}, "box", "ramp"},
+          {quick ? "stack_5" : "stack_10", quick ? 2.0 : 10.0, {"stack_drift", "max_penetration"}, "", ""}};
+}
+
+std::vector<SweepSetting> sweepSettings(bool quick) {
+  const std::vector<double> dts = quick ? std::vector<double>{1.0 / 60, 1.0 / 240}
+                                        : std::vector<double>{1.0 / 60, 1.0 / 120, 1.0 / 240, 1.0 / 480};
+  const std::vector<double> tolerances = quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4, 1e-5};
+  const std::vector<int> iterations = quick ? std::vector<int>{20} : std::vector<int>{10, 20, 50};
+  std::vector<SweepSetting> settings;
+  for (double dt : dts) {
+    for (const char* method : {"bisection", "regula-falsi"})
+      for (double tolerance : tolerances) settings.push_back({"polysim", method, "tolerance_m", tolerance, dt});
+    settings.push_back({"ode", "worldstep", "none", 0.0, dt});
+    for (int n : iterations) settings.push_back({"ode", "quickstep", "iterations", static_cast<double>(n), dt});
+  }
+  return settings;
+}
+
+std::vector<SweepRow> runSweep(const SweepOptions& options, std::ostream* progress) {
+  std::vector<SweepRow> rows;
+  for (const SweepCase& c : standardSweepCases(options.quick)) {
+    const Scene scene = loadScene(options.scenesDirectory + "/" + c.scene + ".json");
+    for (const SweepSetting& s : sweepSettings(options.quick)) {
+      long warnings = 0;
+      const RunRecord record = runOnce(scene, c, s, warnings);
+      if (progress)
+        *progress << c.scene << " " << s.engine << " " << s.solver << " " << s.parameterName << "=" << s.parameter
+                  << " dt=" << s.dt << ": " << record.wallTime << " s" << (warnings ? ", ODE warnings: " : "")
+                  << (warnings ? std::to_string(warnings) : "") << "\n";
+      for (const std::string& metric : c.metrics) {
+        const Figure f = measure(metric, c, scene, record);
+        rows.push_back({c.scene, s, record.wallTime, record.wallTime / record.simTime, metric, f.measured, f.analytic,
+                        std::abs(f.measured - f.analytic), warnings});
+      }
+    }
+  }
+  return rows;
+}
+
+void writeSweepCsv(const std::vector<SweepRow>& rows, std::ostream& out) {
+  out << "scene,engine,solver,parameter_name,parameter,dt,wall_s,cost_s_per_s,metric,measured,analytic,error,"
+         "solver_warnings\n";
+  out << std::setprecision(std::numeric_limits<double>::max_digits10);
+  for (const SweepRow& r : rows)
+    out << r.scene << "," << r.setting.engine << "," << r.setting.solver << "," << r.setting.parameterName << ","
+        << r.setting.parameter << "," << r.setting.dt << "," << r.wallTime << "," << r.cost << "," << r.metric << ","
+        << r.measured << "," << r.analytic << "," << r.error << "," << r.solverWarnings << "\n";
+}
+
+}  // namespace polysim::sim

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The chart end to end: `polysim sweep --quick` writes the CSV, plot_sweep.py draws it as
+# PNG and SVG; a CSV that is not a sweep's gets one message naming it, exit 1, no image.
+# Usage: chart_test.sh POLYSIM SCENES_DIR PLOT_SCRIPT
+set -euo pipefail
+polysim=$1 scenes=$2 plot=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$polysim" sweep --quick --scenes "$scenes" --out "$work/sweep.csv"
+test ! -e "$work/sweep.csv.partial"
+/usr/bin/python3 "$plot" "$work/sweep.csv" "$work/chart"
+head -c 8 "$work/chart.png" | grep -q PNG
+grep -q "<svg" "$work/chart.svg"
+grep -q "polysim bisection" "$work/chart.svg"
+grep -q "ode quickstep" "$work/chart.svg"
+
+echo "scene,engine" > "$work/bad.csv"
+if /usr/bin/python3 "$plot" "$work/bad.csv" "$work/bad" 2> "$work/error"; then
+  echo "plot_sweep.py accepted a CSV without the sweep's columns" >&2
+  exit 1
+fi
+grep -q "bad.csv" "$work/error"
+test "$(wc -l < "$work/error")" -eq 1
+test ! -e "$work/bad.png"
+echo "chart pipeline ok"

@@ -1,0 +1,90 @@
+// The sweep behind the speed-versus-accuracy chart: analytic answers derived from the
+// scenes, and a row per setting with finite figures.
+
+#include "sim/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "sim/analytic_reference.h"
+#include "sim/scene.h"
+
+namespace polysim::sim {
+namespace {
+
+const std::string kScenes = POLYSIM_SCENES_DIR;
+Scene scene(const std::string& name) { return loadScene(kScenes + "/" + name + ".json"); }
+
+TEST(AnalyticReference, DropFromRestFallsItsGapInSqrtTwoGapOverG) {
+  const DropReference drop = dropReference(scene("drop_box"), "box");  // bottom face 1.5 m above the ground's top
+  EXPECT_DOUBLE_EQ(drop.gap, 1.5);
+  EXPECT_DOUBLE_EQ(drop.firstContactTime, std::sqrt(2 * 1.5 / 9.81));
+  EXPECT_DOUBLE_EQ(drop.restHeight, 0.5);
+  EXPECT_DOUBLE_EQ(drop.bounceApex, 0.5);  // restitution 0
+  const DropReference bounce = dropReference(scene("bounce"), "box");  // 1 m gap, e = 0.5
+  EXPECT_DOUBLE_EQ(bounce.bounceApex, 0.5 + 0.25 * 1.0);
+}
+
+TEST(AnalyticReference, InclineSlideIsHalfGTimesSinMinusMuCosTimesTSquared) {
+  const double g = 9.81, theta = M_PI / 6;
+  EXPECT_NEAR(inclineSlideDistance(scene("ramp_slides"), "box", "ramp", 2.0),
+              0.5 * g * (std::sin(theta) - 0.3 * std::cos(theta)) * 4.0, 1e-12);
+  EXPECT_EQ(inclineSlideDistance(scene("ramp_sticks"), "box", "ramp", 2.0), 0.0);  // tan 30° < 0.7
+}
+
+TEST(AnalyticReference, RefusesScenesThatAreNotWhatItDerives) {
+  EXPECT_THROW(dropReference(scene("stack_5"), "box1"), std::invalid_argument);  // resting, not dropped
+  EXPECT_THROW(dropReference(scene("drop_box"), "nobody"), std::invalid_argument);
+  EXPECT_THROW(inclineSlideDistance(scene("drop_box"), "box", "ramp", 1.0), std::invalid_argument);
+}
+
+TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
+  const std::vector<SweepRow> rows = runSweep({kScenes, true});
+  size_t measures = 0;
+  for (const SweepCase& c : standardSweepCases(true)) measures += c.metrics.size();
+  const std::vector<SweepSetting> settings = sweepSettings(true);
+  ASSERT_EQ(rows.size(), measures * settings.size());
+
+  std::set<std::string> seen;
+  for (const SweepRow& r : rows) {
+    for (double x : {r.wallTime, r.cost, r.measured, r.analytic, r.error, r.setting.dt, r.setting.parameter})
+      EXPECT_TRUE(std::isfinite(x)) << r.scene << " " << r.metric;
+    EXPECT_GT(r.cost, 0.0);
+    EXPECT_NEAR(r.error, std::abs(r.measured - r.analytic), 1e-15);
+    seen.insert(r.setting.engine + r.setting.solver + std::to_string(r.setting.dt));
+    if (r.setting.engine == "polysim") {
+      // polysim's answers it can get exactly: where the box rests and how far it overlaps.
+      if (r.metric == "rest_height") {
+        EXPECT_LT(r.error, 1e-9);
+      } else if (r.metric == "max_penetration") {
+        EXPECT_LE(r.measured, 1e-4);
+      } else if (r.metric == "slide_distance") {  // semi-implicit Euler: first order in dt
+        EXPECT_LT(r.error, 0.05);
+      } else if (r.metric == "first_contact_time") {
+        EXPECT_LT(r.error, r.setting.dt);
+      }
+    }
+  }
+  EXPECT_EQ(seen.size(), settings.size());  // every setting ran
+
+  std::ostringstream csv;
+  writeSweepCsv(rows, csv);
+  std::istringstream lines(csv.str());
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line.rfind("scene,engine,solver,", 0), 0u);
+  size_t count = 0;
+  for (; std::getline(lines, line); ++count) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 12) << line;
+    EXPECT_EQ(line.find(",,"), std::string::npos) << "an empty field: " << line;
+    EXPECT_EQ(line.find("nan"), std::string::npos) << line;
+    EXPECT_EQ(line.find("inf"), std::string::npos) << line;
+  }
+  EXPECT_EQ(count, rows.size());
+}
+
+}  // namespace
+}  // namespace polysim::sim
