@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "collision/clip.h"
+#include "collision/normal_cone.h"
 #include "collision/tolerances.h"
 
 namespace polysim::collision {
@@ -99,9 +100,42 @@ bool joinCollinear(Contact& a, const Contact& b, double eps) {
   return true;
 }
 
+// The normal of pieces found to be one contact (see reduceContacts); false when no piece
+// admits any of the proposed normals at both its features: a contact at the rim of a face
+// from the side it cannot be touched from, which a true contact elsewhere covers.
+bool jointNormal(const std::vector<const Contact*>& pieces, const PairGeometry* geometry, double eps,
+                 Eigen::Vector3d& normal) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Contact* c : pieces) sum += c->normal;
+  normal = sum.norm() > kParallelSine ? Eigen::Vector3d(sum.normalized()) : pieces[0]->normal;
+  if (!geometry) return true;
+  int bestVotes = -1;
+  bool admitted = false;
+  for (const Contact* candidate : pieces) {
+    const Eigen::Vector3d& n = candidate->normal;  // from B towards A: A is touched from -n, B from n
+    const Eigen::Vector3d outwardA = -(geometry->R_WA.transpose() * n), outwardB = geometry->R_WB.transpose() * n;
+    int votes = 0;
+    bool wholly = false;  // some piece admits n at both its features
+    for (const Contact* c : pieces) {
+      const bool a = inNormalCone(*geometry->meshA, c->featureA, outwardA, eps);
+      const bool b = inNormalCone(*geometry->meshB, c->featureB, outwardB, eps);
+      votes += a + b;
+      wholly = wholly || (a && b);
+    }
+    if (!wholly) continue;
+    admitted = true;
+    if (votes > bestVotes) bestVotes = votes, normal = n;
+  }
+  // Pieces that agree keep their mean normal (round-off apart, the same as the winner).
+  bool agree = true;
+  for (const Contact* c : pieces) agree = agree && (c->normal - pieces[0]->normal).norm() <= kNormalConeSlack;
+  if (admitted && agree) normal = sum.normalized();
+  return admitted;
+}
+
 }  // namespace
 
-std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps) {
+std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps, const PairGeometry* geometry) {
   std::vector<AreaCluster> clusters;
   std::vector<Contact> lines, points, out;
   for (const Contact& c : raw) {
@@ -144,42 +178,52 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps)
 
   // The same segment found from several feature pairs (an edge along a face, the face's
   // edge along the other's face, the two edges) is one contact: join collinear pieces and
-  // give the joined line the direction of the sum of their normals.
+  // give the joined line their joint normal.
   std::vector<Contact> keptLines;
-  std::vector<Eigen::Vector3d> lineNormals;
+  std::vector<std::vector<const Contact*>> linePieces;
   for (const Contact& line : lines) {
     if (onArea(line.points[0], areas, eps) && onArea(line.points[1], areas, eps)) continue;
     bool joined = false;
     for (size_t k = 0; k < keptLines.size() && !joined; ++k)
-      if (joinCollinear(keptLines[k], line, eps)) joined = true, lineNormals[k] += line.normal;
-    if (!joined) keptLines.push_back(line), lineNormals.push_back(line.normal);
+      if (joinCollinear(keptLines[k], line, eps)) joined = true, linePieces[k].push_back(&line);
+    if (!joined) keptLines.push_back(line), linePieces.push_back({&line});
   }
   for (bool changed = true; changed;) {  // joining can make two kept lines overlap
     changed = false;
     for (size_t i = 0; i < keptLines.size() && !changed; ++i)
       for (size_t j = i + 1; j < keptLines.size() && !changed; ++j)
         if (joinCollinear(keptLines[i], keptLines[j], eps)) {
-          lineNormals[i] += lineNormals[j];
+          linePieces[i].insert(linePieces[i].end(), linePieces[j].begin(), linePieces[j].end());
           keptLines.erase(keptLines.begin() + static_cast<long>(j));
-          lineNormals.erase(lineNormals.begin() + static_cast<long>(j));
+          linePieces.erase(linePieces.begin() + static_cast<long>(j));
           changed = true;
         }
   }
-  for (size_t k = 0; k < keptLines.size(); ++k)
-    if (lineNormals[k].norm() > kParallelSine) keptLines[k].normal = lineNormals[k].normalized();
+  for (size_t k = 0; k < keptLines.size();)
+    if (jointNormal(linePieces[k], geometry, eps, keptLines[k].normal)) {
+      ++k;
+    } else {
+      keptLines.erase(keptLines.begin() + static_cast<long>(k));
+      linePieces.erase(linePieces.begin() + static_cast<long>(k));
+    }
 
   std::vector<Contact> keptPoints;
-  std::vector<Eigen::Vector3d> pointNormals;
+  std::vector<std::vector<const Contact*>> pointPieces;
   for (const Contact& point : points) {
     const Eigen::Vector3d& x = point.points[0];
     bool covered = onArea(x, areas, eps);
     for (const Contact& l : keptLines) covered = covered || distanceToSegment(x, l.points[0], l.points[1]) <= eps;
     for (size_t k = 0; k < keptPoints.size() && !covered; ++k)
-      if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointNormals[k] += point.normal;
-    if (!covered) keptPoints.push_back(point), pointNormals.push_back(point.normal);
+      if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointPieces[k].push_back(&point);
+    if (!covered) keptPoints.push_back(point), pointPieces.push_back({&point});
   }
-  for (size_t k = 0; k < keptPoints.size(); ++k)
-    if (pointNormals[k].norm() > kParallelSine) keptPoints[k].normal = pointNormals[k].normalized();
+  for (size_t k = 0; k < keptPoints.size();)
+    if (jointNormal(pointPieces[k], geometry, eps, keptPoints[k].normal)) {
+      ++k;
+    } else {
+      keptPoints.erase(keptPoints.begin() + static_cast<long>(k));
+      pointPieces.erase(pointPieces.begin() + static_cast<long>(k));
+    }
   out.insert(out.end(), keptLines.begin(), keptLines.end());
   out.insert(out.end(), keptPoints.begin(), keptPoints.end());
   return out;

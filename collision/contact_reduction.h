@@ -5,14 +5,28 @@
 // coplanar set of area pieces merged into one polygon, collinear line pieces joined,
 // and lines and points dropped when they lie on a reported area or line.
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "collision/contact.h"
+#include "collision/polygon_mesh.h"
 
 namespace polysim::collision {
 
+/// The pair's meshes and world orientations, to tell which of several disagreeing normals
+/// of one contact is true (normal_cone.h).
+struct PairGeometry {
+  const PolygonMesh* meshA = nullptr;
+  const PolygonMesh* meshB = nullptr;
+  Eigen::Matrix3d R_WA = Eigen::Matrix3d::Identity(), R_WB = Eigen::Matrix3d::Identity();
+};
+
 /// The contacts of one object pair with every contact reported once. `eps` (m) is the
-/// contact tolerance: pieces within eps of each other are the same contact.
-std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps);
+/// contact tolerance: pieces within eps of each other are the same contact. Pieces joined
+/// into one line or point keep their common normal; when their normals disagree (where
+/// corners and edges of the two objects coincide, each polygon pair proposes its own
+/// face's normal), the contact takes the proposed normal that the most of the pieces'
+/// features admit in their normal cones (with `geometry`; without, the mean normal).
+std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps, const PairGeometry* geometry = nullptr);
 
 }  // namespace polysim::collision

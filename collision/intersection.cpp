@@ -50,7 +50,10 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   if (result.status == Status::Interpenetrating) return result;
   if (touching) {
     result.status = Status::Contact;
-    if (options.contacts) result.contacts = reduceContacts(ws.raw, eps);
+    if (options.contacts) {
+      const PairGeometry geometry{A.mesh.get(), B.mesh.get(), A.X_WO.linear(), B.X_WO.linear()};
+      result.contacts = reduceContacts(ws.raw, eps, &geometry);
+    }
   }
   return result;
 }

@@ -44,6 +44,12 @@ inline constexpr double kFlatEdgeAngle = 1e-4;
 /// tilt by the whole default tolerance.
 inline constexpr double kFaceContactAngle = 1e-2;
 
+/// How far (rad) a contact normal may lie outside a feature's normal cone (the face's
+/// normal; the wedge between an edge's faces; the cone among a vertex's faces) and still
+/// count as a way to touch that feature. Covers round-off and the tilts the contact band
+/// allows (a 1 m face tilted by a 1e-4 m tolerance is 1e-4 rad), with margin.
+inline constexpr double kNormalConeSlack = 1e-3;
+
 /// Bounds on the number of times the voxel grid halves an object's container (M).
 /// Garcia-Alonso et al. found 8 or 9 best for their meshes; polysim picks M so that
 /// voxels are about as long as the object's faces (VoxelGrid::chooseHalvings): a box
