@@ -39,7 +39,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
 const StepReport& World::step(double dt) {
   report_ = StepReport{report_.step + 1, 0.0, {}, false, 0.0, 0};
   integrateVelocities(dt);  // gravity
-  resolveContacts(dt);      // the contacts the step starts with (resting, stacked)
+  resolveContacts(dt, true);  // the contacts the step starts with (resting, stacked)
   double remaining = dt;
   for (int events = 0; remaining > 0;) {
     predictMotion(remaining);                                // each body's path over the rest of the step
@@ -54,7 +54,7 @@ const StepReport& World::step(double dt) {
       report_.eventLimitHit = true;
       break;
     }
-    resolveContacts(remaining);                              // impulses at the contact
+    resolveContacts(remaining, false);                       // impulses at the contact
   }
   const double y = dt - timeCompensation_, sum = time_ + y;  // compensated time_ += dt
   timeCompensation_ = (sum - time_) - y;
@@ -67,7 +67,7 @@ void World::integrateVelocities(double dt) {
   for (dynamics::RigidBody& b : bodies_) dynamics::integrateVelocity(b, scene_.gravity, dt);
 }
 
-void World::resolveContacts(double horizon) {
+void World::resolveContacts(double horizon, bool remember) {
   std::vector<dynamics::ContactPoint> points;
   for (const collision::PairResult& pair : contacts_) {
     const PairMaterial& a = materials_[pair.a];
@@ -92,6 +92,7 @@ void World::resolveContacts(double horizon) {
         break;
       }
   report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon).iterations;
+  if (!remember) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;
     p.frictionImpulse /= horizon;

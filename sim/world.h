@@ -60,7 +60,9 @@ class World {
 
  private:
   void integrateVelocities(double dt);
-  void resolveContacts(double horizon);
+  /// Solves the current contacts over `horizon` seconds. `remember`: keep the result as
+  /// the forces the next solves warm-start from.
+  void resolveContacts(double horizon, bool remember);
   void predictMotion(double duration);
   collision::TocResult detectCollisions();
   void commitPoses(double elapsed);
@@ -75,7 +77,11 @@ class World {
   std::vector<PairMaterial> materials_;  // per body: its restitution and friction
   std::vector<double> sizes_;            // per body: farthest vertex from the centre of mass (m)
   std::vector<collision::PairResult> contacts_;
-  std::vector<dynamics::ContactPoint> lastSolved_;  // impulses as forces (N): impulse / horizon
+  /// The step-start solve's impulses as forces (N): impulse / dt. Only that solve is kept:
+  /// an event's solve is mostly a collision impulse over what remains of the step, and
+  /// divided by that short horizon it would warm-start the next step with many times the
+  /// impulse, for the sweeps to take back.
+  std::vector<dynamics::ContactPoint> lastSolved_;
   double time_ = 0.0;
   double timeCompensation_ = 0.0;  // Kahan summation: 14400 steps of 1/240 add up to 60 exactly
   double firstContact_ = -1.0;
