@@ -133,6 +133,15 @@ bool jointNormal(const std::vector<const Contact*>& pieces, const PairGeometry* 
   return admitted;
 }
 
+// The joined contacts with their joint normals, less those no piece admits.
+std::vector<Contact> withJointNormals(std::vector<Contact> joined, const std::vector<std::vector<const Contact*>>& pieces,
+                                      const PairGeometry* geometry, double eps) {
+  std::vector<Contact> kept;
+  for (size_t k = 0; k < joined.size(); ++k)
+    if (jointNormal(pieces[k], geometry, eps, joined[k].normal)) kept.push_back(std::move(joined[k]));
+  return kept;
+}
+
 }  // namespace
 
 std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps, const PairGeometry* geometry) {
@@ -199,13 +208,7 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
           changed = true;
         }
   }
-  for (size_t k = 0; k < keptLines.size();)
-    if (jointNormal(linePieces[k], geometry, eps, keptLines[k].normal)) {
-      ++k;
-    } else {
-      keptLines.erase(keptLines.begin() + static_cast<long>(k));
-      linePieces.erase(linePieces.begin() + static_cast<long>(k));
-    }
+  keptLines = withJointNormals(std::move(keptLines), linePieces, geometry, eps);
 
   std::vector<Contact> keptPoints;
   std::vector<std::vector<const Contact*>> pointPieces;
@@ -217,13 +220,7 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
       if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointPieces[k].push_back(&point);
     if (!covered) keptPoints.push_back(point), pointPieces.push_back({&point});
   }
-  for (size_t k = 0; k < keptPoints.size();)
-    if (jointNormal(pointPieces[k], geometry, eps, keptPoints[k].normal)) {
-      ++k;
-    } else {
-      keptPoints.erase(keptPoints.begin() + static_cast<long>(k));
-      pointPieces.erase(pointPieces.begin() + static_cast<long>(k));
-    }
+  keptPoints = withJointNormals(std::move(keptPoints), pointPieces, geometry, eps);
   out.insert(out.end(), keptLines.begin(), keptLines.end());
   out.insert(out.end(), keptPoints.begin(), keptPoints.end());
   return out;
