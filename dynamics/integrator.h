@@ -1,8 +1,11 @@
 #pragma once
-// Semi-implicit (symplectic) Euler: velocities first (gravity), then positions with the
-// new velocities. Over a step the centre of mass moves in a straight line and the body
-// turns at constant angular velocity, so the pose at any fraction of a step is known
-// exactly; the step loop hands that path to collisionDetect() as the body's ctrans.
+// Two paths over a step, each known exactly at any time within it, so that the step loop
+// can hand it to collisionDetect() as the body's ctrans:
+// - supported (a body with contacts): semi-implicit (symplectic) Euler, gravity into the
+//   velocity first, then a straight line at that velocity;
+// - free (no contacts): gravity along the way, the exact parabola. Free flight then has
+//   no integration error: a dropped body meets the ground at sqrt(2h/g) whatever the step.
+// Either way the body turns at constant angular velocity.
 
 #include <Eigen/Geometry>
 
@@ -15,11 +18,13 @@ namespace polysim::dynamics {
 /// principal axis, first order otherwise).
 void integrateVelocity(RigidBody& body, const Eigen::Vector3d& gravity, double dt);
 
-/// The pose the body reaches after time s (s in [0, dt]) at its current velocities:
-/// centre of mass + v s, orientation turned by |w| s about w. Static bodies stay put.
-Eigen::Isometry3d poseAfter(const RigidBody& body, double s);
+/// The pose the body reaches after time s (s in [0, dt]): centre of mass + v s + g s^2 / 2,
+/// orientation turned by |w| s about w. `gravity` is the acceleration along the path: zero
+/// for a supported body (its velocity already has it), g for a free one. Static bodies
+/// stay put.
+Eigen::Isometry3d poseAfter(const RigidBody& body, double s, const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
 
-/// Moves the body along that path by time s.
-void advancePose(RigidBody& body, double s);
+/// Moves the body along that path by time s; a free body's velocity gains gravity * s.
+void advancePose(RigidBody& body, double s, const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
 
 }  // namespace polysim::dynamics

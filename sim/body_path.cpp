@@ -6,11 +6,11 @@ namespace polysim::sim {
 
 void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO) {
   const BodyPath& path = *static_cast<const BodyPath*>(info);
-  X_WO = dynamics::poseAfter(*path.body, s * path.duration);
+  X_WO = dynamics::poseAfter(*path.body, s * path.duration, path.gravity);
 }
 
-double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration) {
-  return duration * (body.velocity.norm() + body.angularVelocity.norm() * radius);
+double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration, const Eigen::Vector3d& gravity) {
+  return duration * (body.velocity.norm() + 0.5 * gravity.norm() * duration + body.angularVelocity.norm() * radius);
 }
 
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,

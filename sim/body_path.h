@@ -13,15 +13,17 @@ namespace polysim::sim {
 /// What ctrans needs to place a body at a fraction of a sub-step.
 struct BodyPath {
   const dynamics::RigidBody* body = nullptr;
-  double duration = 0.0;  // s: the sub-step [0, 1] stands for
+  double duration = 0.0;                              // s: the sub-step [0, 1] stands for
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s^2 along the path: g when free, 0 when supported
 };
 
 /// ctrans: the pose the integrator reaches after s * duration (dynamics::poseAfter).
 void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO);
 
-/// How far any vertex can move along the path (m): |v| T + |w| T r, where `radius` is
-/// the body's farthest vertex from its centre of mass.
-double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration);
+/// How far any vertex can move along the path (m): |v| T + |g| T^2 / 2 + |w| T r, where
+/// `radius` is the body's farthest vertex from its centre of mass.
+double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration,
+                       const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
 
 /// Material of a pair of bodies: the larger restitution, the geometric mean of frictions.
 struct PairMaterial {

@@ -28,6 +28,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
     sizes_.push_back(size);
   }
   paths_.resize(bodies_.size());  // never resized again: the database points into it
+  free_.assign(bodies_.size(), 1);
   for (size_t i = 0; i < bodies_.size(); ++i) {
     paths_[i].body = &bodies_[i];
     db_.objects[i].info = &paths_[i];
@@ -38,7 +39,8 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
 
 const StepReport& World::step(double dt) {
   report_ = StepReport{report_.step + 1, 0.0, {}, false, 0.0, 0};
-  integrateVelocities(dt);  // gravity
+  std::fill(free_.begin(), free_.end(), 1);
+  supportTouchingBodies(dt);  // gravity into the velocities of bodies in contact; the others fly free
   resolveContacts(dt, true);  // the contacts the step starts with (resting, stacked)
   double remaining = dt;
   for (int events = 0; remaining > 0;) {
@@ -52,9 +54,13 @@ const StepReport& World::step(double dt) {
     report_.events.push_back({time_ + (dt - remaining), toc});
     if (++events == kMaxEventsPerStep) {                     // rest out the step (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
+      for (size_t i = 0; i < bodies_.size(); ++i)
+        if (free_[i]) dynamics::integrateVelocity(bodies_[i], scene_.gravity, remaining);
       break;
     }
     resolveContacts(remaining, false);                       // impulses at the contact
+    if (supportTouchingBodies(remaining))                    // bodies that landed take the rest of the step's gravity,
+      resolveContacts(remaining, false);                     // after their impact, and their contacts carry it
   }
   const double y = dt - timeCompensation_, sum = time_ + y;  // compensated time_ += dt
   timeCompensation_ = (sum - time_) - y;
@@ -63,8 +69,17 @@ const StepReport& World::step(double dt) {
   return report_;
 }
 
-void World::integrateVelocities(double dt) {
-  for (dynamics::RigidBody& b : bodies_) dynamics::integrateVelocity(b, scene_.gravity, dt);
+bool World::supportTouchingBodies(double duration) {
+  bool any = false;
+  std::vector<char> touching(bodies_.size(), 0);
+  for (const collision::PairResult& p : contacts_) touching[p.a] = touching[p.b] = 1;
+  for (size_t i = 0; i < bodies_.size(); ++i)
+    if (free_[i] && touching[i]) {
+      dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);
+      free_[i] = 0;
+      any = true;
+    }
+  return any;
 }
 
 void World::resolveContacts(double horizon, bool remember) {
@@ -104,10 +119,12 @@ void World::predictMotion(double duration) {
   for (size_t i = 0; i < bodies_.size(); ++i) {
     collision::ObjNode& node = db_.objects[i];
     const dynamics::RigidBody& b = bodies_[i];
-    const bool moving = !b.isStatic && (!b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0));
+    const bool falling = !b.isStatic && free_[i] && !scene_.gravity.isZero(0.0);
+    const bool moving = falling || (!b.isStatic && (!b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0)));
     node.ctrans = moving ? bodyPathPose : nullptr;  // a body at rest costs no update
     paths_[i].duration = duration;
-    node.motionBound = moving ? pathMotionBound(b, sizes_[i], duration) : 0.0;
+    paths_[i].gravity = falling ? scene_.gravity : Eigen::Vector3d::Zero();
+    node.motionBound = moving ? pathMotionBound(b, sizes_[i], duration, paths_[i].gravity) : 0.0;
   }
 }
 
@@ -121,7 +138,7 @@ void World::commitPoses(double elapsed) {
   // are exactly the state collisionDetect() tested.
   // Bodies without a path did not move (and are not re-derived from their centre of mass).
   for (size_t i = 0; i < bodies_.size(); ++i)
-    if (db_.objects[i].ctrans) dynamics::advancePose(bodies_[i], elapsed);
+    if (db_.objects[i].ctrans) dynamics::advancePose(bodies_[i], elapsed, paths_[i].gravity);
 }
 
 void World::noteContacts(const collision::TocResult& toc, double at) {

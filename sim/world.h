@@ -59,7 +59,11 @@ class World {
   double firstContactTime() const { return firstContact_; }
 
  private:
-  void integrateVelocities(double dt);
+  /// Bodies touching something at this point of the step (in contacts_) that were flying
+  /// free get gravity for the next `duration` seconds into their velocity now and move in
+  /// a straight line from here (semi-implicit Euler); the others keep flying their exact
+  /// parabola (dynamics/integrator.h). True when any body changed so.
+  bool supportTouchingBodies(double duration);
   /// Solves the current contacts over `horizon` seconds. `remember`: keep the result as
   /// the forces the next solves warm-start from.
   void resolveContacts(double horizon, bool remember);
@@ -74,6 +78,7 @@ class World {
   collision::IntersectionWorkspace workspace_;  // reused by every collisionDetect() call
   std::vector<dynamics::RigidBody> bodies_;
   std::vector<BodyPath> paths_;
+  std::vector<char> free_;  // per body: gravity acts along its path this step (no contacts yet)
   std::vector<PairMaterial> materials_;  // per body: its restitution and friction
   std::vector<double> sizes_;            // per body: farthest vertex from the centre of mass (m)
   std::vector<collision::PairResult> contacts_;

@@ -38,6 +38,23 @@ TEST(Integrator, FreeFallFollowsTheDiscreteScheme) {
   }
 }
 
+TEST(Integrator, FreeFlightIsTheExactParabolaAtAnyStep) {
+  const V3 gravity(0, 0, -g);
+  for (double dt : {1.0 / 60, 1.0 / 240, 1.0 / 1000}) {
+    RigidBody b = unitBox(1.0);
+    b.position = V3(0, 0, 10);
+    b.velocity = V3(0.5, 0, 2.0);
+    const int n = static_cast<int>(std::round(1.0 / dt));
+    // Halfway through a step the pose is on the parabola too.
+    EXPECT_NEAR(poseAfter(b, 0.5 * dt, gravity).translation().z(), 10 + 2.0 * 0.5 * dt - 0.5 * g * 0.25 * dt * dt, 1e-14);
+    for (int k = 0; k < n; ++k) advancePose(b, dt, gravity);
+    const double t = n * dt;
+    EXPECT_NEAR(b.position.z(), 10 + 2.0 * t - 0.5 * g * t * t, 1e-10) << dt;
+    EXPECT_NEAR(b.position.x(), 0.5 * t, 1e-12);
+    EXPECT_NEAR(b.velocity.z(), 2.0 - g * t, 1e-10);
+  }
+}
+
 TEST(Integrator, PoseAfterIsThePathTheStepTakes) {
   RigidBody b = unitBox(1.0);
   b.centerOfMassLocal = V3(0.1, -0.2, 0.3);  // a frame origin away from the centre of mass

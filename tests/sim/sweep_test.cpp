@@ -57,14 +57,15 @@ TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
     seen.insert(r.setting.engine + r.setting.solver + std::to_string(r.setting.dt));
     if (r.setting.engine == "polysim") {
       // polysim's answers it can get exactly: where the box rests and how far it overlaps.
-      if (r.metric == "rest_height") {
-        EXPECT_LT(r.error, 1e-9);
-      } else if (r.metric == "max_penetration") {
-        EXPECT_LE(r.measured, 1e-4);
-      } else if (r.metric == "slide_distance") {  // semi-implicit Euler: first order in dt
+      const double tolerance = r.setting.parameter;  // m, the contact band
+      if (r.metric == "rest_height" || r.metric == "max_penetration") {
+        EXPECT_LE(r.error, tolerance);
+      } else if (r.metric == "slide_distance") {  // sliding is supported motion: first order in dt
         EXPECT_LT(r.error, 0.05);
       } else if (r.metric == "first_contact_time") {
-        EXPECT_LT(r.error, r.setting.dt);
+        // Free flight is exact; the event is found to within the band over the impact
+        // speed (about 5.4 m/s here).
+        EXPECT_LT(r.error, 2 * tolerance / 5.4);
       }
     }
   }
