@@ -79,21 +79,22 @@ int compareCommand(const std::string& scenePath, const RunOptions& options, cons
 }
 
 int sweepCommand(const SweepOptions& options, const std::string& outPath, std::ostream& out, std::ostream* progress) {
-  const std::vector<SweepRow> rows = runSweep(options, progress);
   if (outPath.empty()) {
-    writeSweepCsv(rows, out);
+    writeSweepCsv(runSweep(options, progress), out);
     return 0;
   }
+  // Opened before the runs, so that an unwritable path fails at once, not after minutes.
   const std::string partial = outPath + ".partial";
-  {
-    std::ofstream file(partial);
-    if (!file) throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
-    writeSweepCsv(rows, file);
+  std::ofstream file(partial);
+  if (!file) throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
+  try {
+    writeSweepCsv(runSweep(options, progress), file);
     if (!file.flush()) throw std::runtime_error(outPath + ": writing the sweep's CSV failed");
-  }
-  if (std::rename(partial.c_str(), outPath.c_str()) != 0) {
+    file.close();
+    if (std::rename(partial.c_str(), outPath.c_str()) != 0) throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
+  } catch (...) {
     std::remove(partial.c_str());
-    throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
+    throw;
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The chart end to end: `polysim sweep --quick` writes the CSV, plot_sweep.py draws it as
-# PNG and SVG; a CSV that is not a sweep's gets one message naming it, exit 1, no image.
+# PNG and SVG; a CSV that is not a sweep's gets one message naming it, exit 1, no image;
+# an unwritable output fails before the runs.
 # Usage: chart_test.sh POLYSIM SCENES_DIR PLOT_SCRIPT
 set -euo pipefail
 polysim=$1 scenes=$2 plot=$3
@@ -23,4 +24,11 @@ fi
 grep -q "bad.csv" "$work/error"
 test "$(wc -l < "$work/error")" -eq 1
 test ! -e "$work/bad.png"
+# An unwritable CSV path fails at once with one message, leaving nothing behind.
+if "$polysim" sweep --quick --scenes "$scenes" --out "$work/missing/sweep.csv" 2> "$work/error"; then
+  echo "sweep wrote into a missing folder" >&2
+  exit 1
+fi
+grep -q "missing/sweep.csv: cannot write" "$work/error"
+test "$(wc -l < "$work/error")" -eq 1
 echo "chart pipeline ok"
