@@ -106,11 +106,15 @@ bool joinCollinear(Contact& a, const Contact& b, double eps) {
 bool jointNormal(const std::vector<const Contact*>& pieces, const PairGeometry* geometry, double eps,
                  Eigen::Vector3d& normal) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Contact* c : pieces) sum += c->normal;
+  bool agree = true;
+  for (const Contact* c : pieces) {
+    sum += c->normal;
+    agree = agree && (c->normal - pieces[0]->normal).norm() <= kNormalConeSlack;
+  }
   normal = sum.norm() > kParallelSine ? Eigen::Vector3d(sum.normalized()) : pieces[0]->normal;
   if (!geometry) return true;
-  int bestVotes = -1;
   bool admitted = false;
+  int bestVotes = -1;
   for (const Contact* candidate : pieces) {
     const Eigen::Vector3d& n = candidate->normal;  // from B towards A: A is touched from -n, B from n
     const Eigen::Vector3d outwardA = -(geometry->R_WA.transpose() * n), outwardB = geometry->R_WB.transpose() * n;
@@ -124,12 +128,9 @@ bool jointNormal(const std::vector<const Contact*>& pieces, const PairGeometry* 
     }
     if (!wholly) continue;
     admitted = true;
+    if (agree) break;  // pieces that agree keep their mean normal
     if (votes > bestVotes) bestVotes = votes, normal = n;
   }
-  // Pieces that agree keep their mean normal (round-off apart, the same as the winner).
-  bool agree = true;
-  for (const Contact* c : pieces) agree = agree && (c->normal - pieces[0]->normal).norm() <= kNormalConeSlack;
-  if (admitted && agree) normal = sum.normalized();
   return admitted;
 }
 

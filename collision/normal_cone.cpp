@@ -38,8 +38,8 @@ bool edgeAdmits(const PolygonMesh& mesh, const MeshEdge& edge, const Eigen::Vect
 bool vertexAdmits(const PolygonMesh& mesh, int v, const Eigen::Vector3d& outward, double eps) {
   const Eigen::Vector3d& origin = mesh.vertices()[v];
   bool admits = true;
-  for (const MeshEdge& edge : mesh.edges()) {
-    if (edge.v0 != v && edge.v1 != v) continue;
+  for (const int* e = mesh.vertexEdgesBegin(v); e != mesh.vertexEdgesEnd(v); ++e) {
+    const MeshEdge& edge = mesh.edges()[*e];
     if (isReflex(mesh, edge)) return true;
     const Eigen::Vector3d d = mesh.vertices()[edge.v0 == v ? edge.v1 : edge.v0] - origin;
     admits = admits && d.dot(outward) <= eps + kNormalConeSlack * d.norm();

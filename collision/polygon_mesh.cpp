@@ -167,6 +167,14 @@ PolygonMesh::PolygonMesh(MeshData data) {
     faceBounds_.push_back(box);
     bounds_.extend(box);
   }
+  vertexEdgeStart_.assign(vertices_.size() + 1, 0);
+  for (const MeshEdge& e : edges_) ++vertexEdgeStart_[e.v0 + 1], ++vertexEdgeStart_[e.v1 + 1];
+  for (size_t v = 0; v < vertices_.size(); ++v) vertexEdgeStart_[v + 1] += vertexEdgeStart_[v];
+  vertexEdges_.resize(2 * edges_.size());
+  std::vector<int> next(vertexEdgeStart_.begin(), vertexEdgeStart_.end() - 1);
+  for (size_t e = 0; e < edges_.size(); ++e)
+    for (int v : {edges_[e].v0, edges_[e].v1}) vertexEdges_[next[v]++] = static_cast<int>(e);
+
   closed_ = true;
   edgeOutward_.reserve(edges_.size());
   for (const MeshEdge& e : edges_) {

@@ -53,6 +53,9 @@ class PolygonMesh {
   const Plane& facePlane(int f) const { return planes_[f]; }
   const Eigen::AlignedBox3d& faceBounds(int f) const { return faceBounds_[f]; }
   const std::vector<MeshEdge>& edges() const { return edges_; }
+  /// The edges at vertex v, as a range of edge indices.
+  const int* vertexEdgesBegin(int v) const { return vertexEdges_.data() + vertexEdgeStart_[v]; }
+  const int* vertexEdgesEnd(int v) const { return vertexEdges_.data() + vertexEdgeStart_[v + 1]; }
   /// Unit direction pointing out of the object at edge e: the normalized sum of the
   /// normals of its faces (the face normal for a boundary edge).
   const Eigen::Vector3d& edgeOutward(int e) const { return edgeOutward_[e]; }
@@ -72,6 +75,8 @@ class PolygonMesh {
   std::vector<Plane> planes_;
   std::vector<Eigen::AlignedBox3d> faceBounds_;
   std::vector<MeshEdge> edges_;
+  std::vector<int> vertexEdgeStart_;  // CSR offsets into vertexEdges_, size vertex count + 1
+  std::vector<int> vertexEdges_;
   std::vector<Eigen::Vector3d> edgeOutward_;
   std::vector<char> edgeFlat_;
   Eigen::AlignedBox3d bounds_;

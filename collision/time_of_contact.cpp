@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "collision/aabb.h"
@@ -248,6 +249,12 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
 
 std::string toString(TocMethod method) {
   return method == TocMethod::Bisection ? "bisection" : "regula-falsi";
+}
+
+TocMethod tocMethodNamed(const std::string& name) {
+  for (TocMethod m : {TocMethod::Bisection, TocMethod::RegulaFalsi})
+    if (toString(m) == name) return m;
+  throw std::invalid_argument("unknown time-of-contact method \"" + name + "\" (bisection or regula-falsi)");
 }
 
 std::string toString(TocStop stop) {

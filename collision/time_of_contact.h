@@ -78,6 +78,9 @@ TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options = {});
 TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, const TocOptions& options = {});
 
 std::string toString(TocMethod method);
+/// The method toString names ("bisection", "regula-falsi"); throws std::invalid_argument
+/// for any other name.
+TocMethod tocMethodNamed(const std::string& name);
 std::string toString(TocStop stop);
 
 }  // namespace polysim::collision

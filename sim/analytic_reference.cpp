@@ -25,7 +25,7 @@ DropReference dropReference(const Scene& scene, const std::string& name) {
   const BodySpec& body = find(scene, name);
   requireAtRest(scene, body);
   const double g = scene.gravity.norm();
-  const Eigen::Vector3d up = -scene.gravity / g;
+  const Eigen::Vector3d up = scene.up();
   double lowest = std::numeric_limits<double>::infinity(), top = -std::numeric_limits<double>::infinity();
   double e = body.restitution.value_or(scene.contact.restitution);  // polysim and ODE take the pair's larger
   for (const Eigen::Vector3d& v : body.mesh.vertices) lowest = std::min(lowest, (body.pose() * v).dot(up));
@@ -51,7 +51,7 @@ double inclineSlideDistance(const Scene& scene, const std::string& name, const s
   const BodySpec& ramp = find(scene, rampName);
   requireAtRest(scene, body);
   const double g = scene.gravity.norm();
-  const Eigen::Vector3d up = -scene.gravity / g;
+  const Eigen::Vector3d up = scene.up();
   const double theta = std::acos(std::clamp((ramp.orientation * Eigen::Vector3d::UnitZ()).dot(up), -1.0, 1.0));
   const double mu = std::sqrt(body.friction.value_or(scene.contact.friction) * ramp.friction.value_or(scene.contact.friction));
   const double acceleration = g * (std::sin(theta) - mu * std::cos(theta));

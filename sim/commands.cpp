@@ -40,9 +40,7 @@ int runCommand(const std::string& scenePath, const RunOptions& options, std::ost
 
 int tocCommand(const std::string& scenePath, double interval, const std::string& method, std::ostream& out) {
   collision::TocOptions options;
-  if (method == "bisection") options.method = collision::TocMethod::Bisection;
-  else if (method == "regula-falsi") options.method = collision::TocMethod::RegulaFalsi;
-  else throw std::invalid_argument("unknown --method \"" + method + "\" (bisection or regula-falsi)");
+  options.method = collision::tocMethodNamed(method);
 
   const Scene scene = loadScene(scenePath);
   checkInitialState(scene);

@@ -18,14 +18,6 @@ constexpr double kFindingPenetrationFactor = 10.0;  // overlap beyond this many 
 constexpr double kFindingPositionDifference = 0.01; // m between the engines' final positions
 constexpr double kFindingEnergyGain = 1e-6;         // J per J of initial energy (or per J when it is 0)
 
-long stepsOf(const Scene& scene, const RunOptions& options) {
-  return std::lround(options.duration.value_or(scene.duration) / options.dt.value_or(scene.dt));
-}
-
-Eigen::Vector3d upOf(const Scene& scene) {
-  return scene.gravity.isZero() ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-scene.gravity.normalized());
-}
-
 nlohmann::ordered_json settingsToJson(const OdeSettings& s) {
   return {{"stepper", s.quickStep ? "quickstep" : "worldstep"},
           {"iterations", s.quickStepIterations},
@@ -41,10 +33,11 @@ std::string number(double x) {
 
 // The lowest point (along up) of every static body: below it, a body has fallen through.
 double lowestStaticHeight(const Scene& scene) {
+  const Eigen::Vector3d up = scene.up();
   double lowest = std::numeric_limits<double>::infinity();
   for (const BodySpec& b : scene.bodies)
     if (b.isStatic)
-      for (const Eigen::Vector3d& v : b.mesh.vertices) lowest = std::min(lowest, (b.pose() * v).dot(upOf(scene)));
+      for (const Eigen::Vector3d& v : b.mesh.vertices) lowest = std::min(lowest, (b.pose() * v).dot(up));
   return lowest;
 }
 
@@ -55,23 +48,21 @@ void addFindings(const std::string& engine, const Scene& scene, const RunRecord&
                   number(r.maxPenetration / tolerance) + " times the contact tolerance");
   if (r.maxEnergyIncrease > kFindingEnergyGain * std::max(1.0, std::abs(r.initialEnergy)))
     out.push_back(engine + ": energy rose " + number(r.maxEnergyIncrease) + " J above its initial value");
-  const Eigen::Vector3d up = upOf(scene);
   const double floor = lowestStaticHeight(scene);
   for (const BodyState& end : r.final)
-    if (end.position.dot(up) < floor)
-      out.push_back(engine + ": " + end.name + " ended at height " + number(end.position.dot(up)) +
+    if (end.position.dot(r.up) < floor)
+      out.push_back(engine + ": " + end.name + " ended at height " + number(end.position.dot(r.up)) +
                     " m, below every static body (it fell off or through)");
 }
 
 // polysim's run, with every contact state handed to ODE for comparison.
 // Its wall time leaves out the time spent asking ODE.
 RunRecord runPolysimComparingContacts(const Scene& scene, const RunOptions& options, ContactAgreement& agreement) {
-  const double dt = options.dt.value_or(scene.dt);
   PolysimEngine engine(scene, options.method);
   OdeContactProbe probe(scene);
   const double press = kOdePressFactor * scene.contact.tolerance;
   std::chrono::steady_clock::duration probing{};
-  RunRecord record = recordRun(engine, stepsOf(scene, options), dt, scene.gravity, [&] {
+  RunRecord record = recordRun(engine, options.stepsFor(scene), options.dtFor(scene), scene.up(), [&] {
     const World& world = engine.world();
     if (world.contacts().empty()) return;
     const auto start = std::chrono::steady_clock::now();
@@ -90,19 +81,16 @@ RunRecord runPolysimComparingContacts(const Scene& scene, const RunOptions& opti
   return record;
 }
 
-nlohmann::ordered_json bodyComparison(const Scene& scene, const BodyState& start, const BodyState& a, const BodyState& b) {
-  const Eigen::Vector3d up = upOf(scene);
-  auto drift = [&](const BodyState& end) {
-    const Eigen::Vector3d moved = end.position - start.position;
-    return forOutput((moved - moved.dot(up) * up).norm());
-  };
-  auto heightChange = [&](const BodyState& end) { return forOutput((end.position - start.position).dot(up)); };
+// Dynamic body i in both runs, which started from the same state.
+nlohmann::ordered_json bodyComparison(size_t i, const RunRecord& mine, const RunRecord& ode) {
+  const BodyState& a = mine.final[i];
+  const BodyState& b = ode.final[i];
   return {{"name", a.name},
           {"position_difference", forOutput((a.position - b.position).norm())},
           {"orientation_difference_rad", forOutput(a.orientation.angularDistance(b.orientation))},
           {"at_rest", {a.atRest, b.atRest}},
-          {"drift", {drift(a), drift(b)}},
-          {"height_change", {heightChange(a), heightChange(b)}}};
+          {"drift", {forOutput(mine.drift(i)), forOutput(ode.drift(i))}},
+          {"height_change", {forOutput(mine.heightChange(i)), forOutput(ode.heightChange(i))}}};
 }
 
 nlohmann::ordered_json odeSummary(const Scene& scene, const RunRecord& record, const OdeWorld& world,
@@ -119,7 +107,7 @@ nlohmann::ordered_json odeSummary(const Scene& scene, const RunRecord& record, c
 
 nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings) {
   OdeWorld world(scene, settings);
-  const RunRecord record = recordRun(world, stepsOf(scene, options), options.dt.value_or(scene.dt), scene.gravity);
+  const RunRecord record = recordRun(world, options.stepsFor(scene), options.dtFor(scene), scene.up());
   return odeSummary(scene, record, world, settings);
 }
 
@@ -127,10 +115,10 @@ nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& opti
   ContactAgreement agreement;
   const RunRecord mine = runPolysimComparingContacts(scene, options, agreement);
   OdeWorld odeWorld(scene, settings);
-  const RunRecord ode = recordRun(odeWorld, stepsOf(scene, options), options.dt.value_or(scene.dt), scene.gravity);
+  const RunRecord ode = recordRun(odeWorld, options.stepsFor(scene), options.dtFor(scene), scene.up());
 
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
-  for (size_t i = 0; i < mine.final.size(); ++i) bodies.push_back(bodyComparison(scene, mine.initial[i], mine.final[i], ode.final[i]));
+  for (size_t i = 0; i < mine.final.size(); ++i) bodies.push_back(bodyComparison(i, mine, ode));
   std::vector<std::string> findings;
   addFindings("polysim", scene, mine, findings);
   addFindings("ode", scene, ode, findings);

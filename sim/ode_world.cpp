@@ -81,12 +81,11 @@ OdeWorld::OdeWorld(const Scene& scene, const OdeSettings& settings) : scene_(sce
       bodies_.push_back(std::move(b));
       continue;
     }
-    auto props = dynamics::computeMassProperties(spec.mesh.vertices, spec.mesh.faces, spec.density.value_or(1000.0));
-    if (spec.mass) props = dynamics::withMass(props, *spec.mass);
+    const dynamics::MassProperties props = spec.massProperties();
     b->mass = props.mass;
     b->inertia = props.inertia;
     b->centerOfMassLocal = props.centerOfMass;
-    for (const Eigen::Vector3d& v : spec.mesh.vertices) b->size = std::max(b->size, (v - props.centerOfMass).norm());
+    b->size = spec.reachFrom(props.centerOfMass);
     b->body = dBodyCreate(world_);
     dMass m;
     const Eigen::Matrix3d& I = props.inertia;

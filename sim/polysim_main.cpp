@@ -75,21 +75,20 @@ int main(int argc, char** argv) {
   sweep->add_option("--out", sweepOut, "CSV file (default: standard output)");
 
   CLI11_PARSE(app, argc, argv);
+  auto takeRunFlags = [&] {  // shared by run and compare
+    if (runDuration > 0) runOptions.duration = runDuration;
+    if (runDt > 0) runOptions.dt = runDt;
+    runOptions.method = polysim::collision::tocMethodNamed(runMethod);
+  };
   try {
     if (contacts->parsed()) return polysim::sim::contactsCommand(scene, std::cout);
     if (run->parsed()) {
-      if (runDuration > 0) runOptions.duration = runDuration;
-      if (runDt > 0) runOptions.dt = runDt;
-      runOptions.method = runMethod == "bisection" ? polysim::collision::TocMethod::Bisection
-                                                   : polysim::collision::TocMethod::RegulaFalsi;
+      takeRunFlags();
       runOptions.progress = isatty(STDERR_FILENO);
       return polysim::sim::runCommand(scene, runOptions, std::cout);
     }
     if (compare->parsed()) {
-      if (runDuration > 0) runOptions.duration = runDuration;
-      if (runDt > 0) runOptions.dt = runDt;
-      runOptions.method = runMethod == "bisection" ? polysim::collision::TocMethod::Bisection
-                                                   : polysim::collision::TocMethod::RegulaFalsi;
+      takeRunFlags();
       ode.quickStep = odeStepper == "quickstep";
       return polysim::sim::compareCommand(scene, runOptions, ode, std::cout);
     }

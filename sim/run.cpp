@@ -32,8 +32,7 @@ class ProgressBar {
 }  // namespace
 
 nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
-  const double dt = options.dt.value_or(scene.dt);
-  const long steps = std::lround(options.duration.value_or(scene.duration) / dt);
+  const long steps = options.stepsFor(scene);
   PolysimEngine engine(scene, options.method);
   std::unique_ptr<StepLog> log;
   if (!options.logPath.empty()) log = std::make_unique<StepLog>(options.logPath);
@@ -41,7 +40,7 @@ nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
   if (options.progress) bar = std::make_unique<ProgressBar>(steps);
 
   long eventLimitSteps = 0, done = 0;
-  const RunRecord record = recordRun(engine, steps, dt, scene.gravity, [&] {
+  const RunRecord record = recordRun(engine, steps, options.dtFor(scene), scene.up(), [&] {
     eventLimitSteps += engine.lastReport().eventLimitHit;
     if (log) log->write(engine.world(), engine.lastReport());
     if (bar) bar->update(++done);

@@ -1,6 +1,7 @@
 #pragma once
 // `polysim run`: a whole simulation and its summary (SPEC.md).
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -15,6 +16,9 @@ struct RunOptions {
   std::string logPath;                 // empty: no step log
   collision::TocMethod method = collision::TocMethod::Bisection;
   bool progress = false;               // a progress bar on stderr
+
+  double dtFor(const Scene& scene) const { return dt.value_or(scene.dt); }
+  long stepsFor(const Scene& scene) const { return std::lround(duration.value_or(scene.duration) / dtFor(scene)); }
 };
 
 /// Runs the scene and returns SPEC.md's summary: scene, steps, sim_time, wall_time_s,

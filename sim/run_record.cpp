@@ -8,11 +8,16 @@
 
 namespace polysim::sim {
 
-RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& gravity,
+double RunRecord::drift(size_t i) const {
+  const Eigen::Vector3d moved = final[i].position - initial[i].position;
+  return (moved - moved.dot(up) * up).norm();
+}
+
+RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& up,
                     const std::function<void()>& afterStep) {
-  const Eigen::Vector3d up = gravity.isZero() ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-gravity.normalized());
   RunRecord r;
   r.steps = steps;
+  r.up = up;
   r.initial = engine.bodyStates();
   r.initialEnergy = engine.energy();
   r.apexAfterFirstContact.assign(r.initial.size(), std::numeric_limits<double>::quiet_NaN());

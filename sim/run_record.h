@@ -19,13 +19,20 @@ struct RunRecord {
   double maxPenetration = 0.0;             // m, deepest overlap in any step
   double initialEnergy = 0.0, finalEnergy = 0.0, maxEnergyIncrease = 0.0;  // J
   std::vector<BodyState> initial, final;   // dynamic bodies, scene order
-  /// Per dynamic body: the highest its origin rose along -gravity (m) after the first
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  // heights are measured along it (Scene::up)
+  /// Per dynamic body: the highest its origin rose along `up` (m) after the first
   /// contact, sampled at step ends; the apex of its first rebound. NaN with no contact.
   std::vector<double> apexAfterFirstContact;
+
+  /// How far dynamic body i's origin ended from where it started, across `up` (m).
+  double drift(size_t i) const;
+  /// How far it ended above (> 0) or below where it started, along `up` (m).
+  double heightChange(size_t i) const { return (final[i].position - initial[i].position).dot(up); }
 };
 
 /// Steps `engine` `steps` times by dt, calling afterStep (when given) after each step.
-RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& gravity,
+/// `up` is the scene's (Scene::up).
+RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& up,
                     const std::function<void()>& afterStep = {});
 
 /// SPEC.md's summary of a run: scene, steps, sim_time, wall_time_s, first_contact_time,

@@ -251,6 +251,21 @@ Eigen::Isometry3d BodySpec::pose() const {
   return X;
 }
 
+Eigen::Vector3d Scene::up() const {
+  return gravity.isZero() ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-gravity.normalized());
+}
+
+dynamics::MassProperties BodySpec::massProperties() const {
+  const auto props = dynamics::computeMassProperties(mesh.vertices, mesh.faces, density.value_or(1000.0));
+  return mass ? dynamics::withMass(props, *mass) : props;
+}
+
+double BodySpec::reachFrom(const Eigen::Vector3d& point) const {
+  double reach = 0.0;
+  for (const Eigen::Vector3d& v : mesh.vertices) reach = std::max(reach, (v - point).norm());
+  return reach;
+}
+
 Scene loadScene(const std::string& path) {
   Problems problems(path);
   std::ifstream in(path);

@@ -11,6 +11,7 @@
 #include "collision/object.h"
 #include "collision/polygon_mesh.h"
 #include "collision/tolerances.h"
+#include "dynamics/mass_properties.h"
 
 namespace polysim::sim {
 
@@ -43,6 +44,11 @@ struct BodySpec {
   std::optional<double> restitution, friction;  // override the scene's
 
   Eigen::Isometry3d pose() const;
+  /// A dynamic body's mass properties: its mesh at its density (1000 kg/m^3 when neither
+  /// is given), scaled to its mass when that is given.
+  dynamics::MassProperties massProperties() const;
+  /// Its farthest vertex from `point` (m, body frame): the size the at-rest rule uses.
+  double reachFrom(const Eigen::Vector3d& point) const;
 };
 
 struct Scene {
@@ -53,6 +59,9 @@ struct Scene {
   double duration = 1.0;                 // s
   ContactSettings contact;
   std::vector<BodySpec> bodies;
+
+  /// The unit vector against gravity, along which heights are measured (+z without gravity).
+  Eigen::Vector3d up() const;
 };
 
 /// Reads and validates a scene file. Throws SceneError listing every problem found:

@@ -20,14 +20,12 @@ const BodyState& stateOf(const std::vector<BodyState>& states, const std::string
   throw std::invalid_argument("the sweep measures body \"" + name + "\", which is not a dynamic body of the scene");
 }
 
-double horizontal(const Eigen::Vector3d& d, const Eigen::Vector3d& up) { return (d - d.dot(up) * up).norm(); }
-
 struct Figure {
   double measured, analytic;
 };
 
 Figure measure(const std::string& metric, const SweepCase& c, const Scene& scene, const RunRecord& r) {
-  const Eigen::Vector3d up = -scene.gravity.normalized();
+  const Eigen::Vector3d& up = r.up;
   if (metric == "first_contact_time")  // none: not before the end of the run
     return {r.firstContactTime.value_or(r.simTime), dropReference(scene, c.body).firstContactTime};
   if (metric == "rest_height") return {stateOf(r.final, c.body).position.dot(up), dropReference(scene, c.body).restHeight};
@@ -40,8 +38,7 @@ Figure measure(const std::string& metric, const SweepCase& c, const Scene& scene
             inclineSlideDistance(scene, c.body, c.ramp, r.simTime)};
   if (metric == "stack_drift") {
     double drift = 0.0;
-    for (size_t i = 0; i < r.final.size(); ++i)
-      drift = std::max(drift, horizontal(r.final[i].position - r.initial[i].position, up));
+    for (size_t i = 0; i < r.final.size(); ++i) drift = std::max(drift, r.drift(i));
     return {drift, 0.0};
   }
   if (metric == "max_penetration") return {r.maxPenetration, 0.0};
@@ -55,14 +52,14 @@ RunRecord runOnce(const Scene& scene, const SweepCase& c, const SweepSetting& s,
   if (s.engine == "polysim") {
     Scene tuned = scene;
     tuned.contact.tolerance = s.parameter;
-    PolysimEngine engine(tuned, s.solver == "bisection" ? collision::TocMethod::Bisection : collision::TocMethod::RegulaFalsi);
-    return recordRun(engine, steps, s.dt, scene.gravity);
+    PolysimEngine engine(tuned, collision::tocMethodNamed(s.solver));
+    return recordRun(engine, steps, s.dt, scene.up());
   }
   OdeSettings ode;
   ode.quickStep = s.solver == "quickstep";
   if (ode.quickStep) ode.quickStepIterations = static_cast<int>(s.parameter);
   OdeWorld engine(scene, ode);
-  RunRecord record = recordRun(engine, steps, s.dt, scene.gravity);
+  RunRecord record = recordRun(engine, steps, s.dt, scene.up());
   warnings = engine.messages();
   return record;
 }

@@ -14,8 +14,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
   for (const BodySpec& spec : scene_.bodies) {
     dynamics::RigidBody body = dynamics::RigidBody::fixed();
     if (!spec.isStatic) {
-      const auto props = dynamics::computeMassProperties(spec.mesh.vertices, spec.mesh.faces, spec.density.value_or(1000.0));
-      body = dynamics::RigidBody::dynamic(spec.mass ? dynamics::withMass(props, *spec.mass) : props);
+      body = dynamics::RigidBody::dynamic(spec.massProperties());
       body.velocity = spec.velocity;
       body.angularVelocity = spec.angularVelocity;
     }
@@ -23,9 +22,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
     body.orientation = spec.orientation;
     bodies_.push_back(body);
     materials_.push_back({spec.restitution.value_or(scene_.contact.restitution), spec.friction.value_or(scene_.contact.friction)});
-    double size = 0.0;
-    for (const Eigen::Vector3d& v : spec.mesh.vertices) size = std::max(size, (v - body.centerOfMassLocal).norm());
-    sizes_.push_back(size);
+    sizes_.push_back(spec.reachFrom(body.centerOfMassLocal));
   }
   paths_.resize(bodies_.size());  // never resized again: the database points into it
   free_.assign(bodies_.size(), 1);
@@ -71,14 +68,13 @@ const StepReport& World::step(double dt) {
 
 bool World::supportTouchingBodies(double duration) {
   bool any = false;
-  std::vector<char> touching(bodies_.size(), 0);
-  for (const collision::PairResult& p : contacts_) touching[p.a] = touching[p.b] = 1;
-  for (size_t i = 0; i < bodies_.size(); ++i)
-    if (free_[i] && touching[i]) {
-      dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);
-      free_[i] = 0;
-      any = true;
-    }
+  for (const collision::PairResult& p : contacts_)
+    for (int i : {p.a, p.b})
+      if (free_[i]) {
+        dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);  // nothing for a static body
+        free_[i] = 0;
+        any = any || !bodies_[i].isStatic;
+      }
   return any;
 }
 
