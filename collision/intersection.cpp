@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "collision/contact_reduction.h"
+#include "collision/separating_plane.h"
 
 namespace polysim::collision {
 
@@ -15,7 +16,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   const ObjNode& B = db.objects[b];
   const double eps = db.tolerance;
   const std::optional<Eigen::AlignedBox3d> region = overlapRegion(A, B, eps);
-  if (!region) return result;
+  if (!region || separatedAlongCentreLine(A, B, eps)) return result;
 
   if (ws.faces.size() < db.objects.size()) ws.faces.resize(db.objects.size());
   WorldFaces& facesA = ws.faces[a];

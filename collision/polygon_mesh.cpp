@@ -186,6 +186,61 @@ PolygonMesh::PolygonMesh(MeshData data) {
     // Two faces folded flat onto each other have no outward direction; keep face0's.
     edgeOutward_.push_back(out.norm() > kParallelSine ? out.normalized() : planes_[e.face0].normal);
   }
+  convex_ = !edges_.empty() && closed_ && connected() && foldsOutward();
+  for (int x = -1; x <= 1 && !vertices_.empty(); ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        const Eigen::Vector3d d(x, y, z);
+        int best = 0;
+        for (size_t v = 1; v < vertices_.size(); ++v)
+          if (d.dot(vertices_[v]) > d.dot(vertices_[best])) best = static_cast<int>(v);
+        climbStarts_.push_back(best);
+      }
+}
+
+bool PolygonMesh::connected() const {
+  std::vector<char> seen(vertices_.size(), 0);
+  std::vector<int> todo{faceIndices_.front()};
+  seen[todo.back()] = 1;
+  while (!todo.empty()) {
+    const int v = todo.back();
+    todo.pop_back();
+    for (const int* e = vertexEdgesBegin(v); e != vertexEdgesEnd(v); ++e) {
+      const int w = edges_[*e].v0 == v ? edges_[*e].v1 : edges_[*e].v0;
+      if (!seen[w]) seen[w] = 1, todo.push_back(w);
+    }
+  }
+  for (int v : faceIndices_)
+    if (!seen[v]) return false;
+  return true;
+}
+
+bool PolygonMesh::foldsOutward() const {
+  auto behind = [&](int face, int other) {
+    for (int k = 0; k < faceSize(other); ++k)
+      if (planes_[face].signedDistance(vertices_[faceVertices(other)[k]]) > kPlanarityTolerance) return false;
+    return true;
+  };
+  for (const MeshEdge& e : edges_)
+    if (!behind(e.face0, e.face1) || !behind(e.face1, e.face0)) return false;
+  return true;
+}
+
+int PolygonMesh::extremeVertex(const Eigen::Vector3d& d) const {
+  int v = climbStarts_.front();
+  for (int start : climbStarts_)
+    if (d.dot(vertices_[start]) > d.dot(vertices_[v])) v = start;
+  double level = d.dot(vertices_[v]);
+  for (int at = -1; at != v;) {  // steepest ascent until no neighbour is farther
+    at = v;
+    for (const int* e = vertexEdgesBegin(at); e != vertexEdgesEnd(at); ++e) {
+      const int w = edges_[*e].v0 == at ? edges_[*e].v1 : edges_[*e].v0;
+      const double l = d.dot(vertices_[w]);
+      if (l > level) level = l, v = w;
+    }
+  }
+  return v;
 }
 
 std::vector<std::vector<int>> PolygonMesh::faceLists() const {

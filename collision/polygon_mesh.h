@@ -64,10 +64,22 @@ class PolygonMesh {
   bool edgeIsFlat(int e) const { return edgeFlat_[e] != 0; }
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
   bool closed() const { return closed_; }
+  /// True when the mesh bounds a convex solid: closed, connected, and every pair of
+  /// faces meeting at an edge folds outward (each face's vertices lie behind the other's
+  /// plane, within kPlanarityTolerance). Then a vertex with no neighbour farther along a
+  /// direction is the farthest of all (see extremeVertex).
+  bool convex() const { return convex_; }
+  /// The vertex farthest along d (object frame, any length). Exact for a convex mesh, by
+  /// climbing from neighbour to neighbour (O(sqrt(vertices)) steps on a sphere); on a
+  /// non-convex mesh only a local maximum.
+  int extremeVertex(const Eigen::Vector3d& d) const;
   /// The faces as index lists (for mass properties and output).
   std::vector<std::vector<int>> faceLists() const;
 
  private:
+  bool connected() const;     // every face's vertex reachable from the first along edges
+  bool foldsOutward() const;  // closed mesh: no edge folds inward
+
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<int> faceStart_;    // CSR offsets into faceIndices_, size faceCount()+1
   std::vector<int> faceIndices_;
@@ -81,6 +93,8 @@ class PolygonMesh {
   std::vector<char> edgeFlat_;
   Eigen::AlignedBox3d bounds_;
   bool closed_ = false;
+  bool convex_ = false;
+  std::vector<int> climbStarts_;  // the farthest vertices along the 26 directions of a cube
 };
 
 }  // namespace polysim::collision
