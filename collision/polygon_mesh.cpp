@@ -197,6 +197,23 @@ PolygonMesh::PolygonMesh(MeshData data) {
           if (d.dot(vertices_[v]) > d.dot(vertices_[best])) best = static_cast<int>(v);
         climbStarts_.push_back(best);
       }
+  if (convex_) findSeparatingDirections();
+}
+
+void PolygonMesh::findSeparatingDirections() {
+  // Adds u unless it is parallel to one already listed; false once the list is full.
+  auto addDistinct = [](std::vector<Eigen::Vector3d>& list, const Eigen::Vector3d& u) {
+    for (const Eigen::Vector3d& w : list)
+      if (u.cross(w).norm() <= kParallelSine) return true;
+    if (list.size() == static_cast<size_t>(kMaxSeparatingDirections)) return false;
+    list.push_back(u);
+    return true;
+  };
+  bool few = true;
+  for (int f = 0; f < faceCount() && few; ++f) few = addDistinct(faceDirections_, planes_[f].normal);
+  for (size_t e = 0; e < edges_.size() && few; ++e)
+    few = addDistinct(edgeDirections_, (vertices_[edges_[e].v1] - vertices_[edges_[e].v0]).normalized());
+  if (!few) faceDirections_.clear(), edgeDirections_.clear();
 }
 
 bool PolygonMesh::connected() const {
@@ -227,7 +244,24 @@ bool PolygonMesh::foldsOutward() const {
   return true;
 }
 
+std::pair<double, double> PolygonMesh::extentAlong(const Eigen::Vector3d& d) const {
+  if (vertices_.size() > kScanUpTo) return {d.dot(vertices_[extremeVertex(-d)]), d.dot(vertices_[extremeVertex(d)])};
+  double lo = d.dot(vertices_.front()), hi = lo;
+  for (const Eigen::Vector3d& v : vertices_) {
+    const double level = d.dot(v);
+    lo = std::min(lo, level);
+    hi = std::max(hi, level);
+  }
+  return {lo, hi};
+}
+
 int PolygonMesh::extremeVertex(const Eigen::Vector3d& d) const {
+  if (vertices_.size() <= kScanUpTo) {
+    int best = 0;
+    for (size_t v = 1; v < vertices_.size(); ++v)
+      if (d.dot(vertices_[v]) > d.dot(vertices_[best])) best = static_cast<int>(v);
+    return best;
+  }
   int v = climbStarts_.front();
   for (int start : climbStarts_)
     if (d.dot(vertices_[start]) > d.dot(vertices_[v])) v = start;

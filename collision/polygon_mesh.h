@@ -73,12 +73,24 @@ class PolygonMesh {
   /// climbing from neighbour to neighbour (O(sqrt(vertices)) steps on a sphere); on a
   /// non-convex mesh only a local maximum.
   int extremeVertex(const Eigen::Vector3d& d) const;
+  /// Meshes with at most this many vertices are scanned rather than climbed: quicker.
+  static constexpr size_t kScanUpTo = 32;
+  /// The least and greatest d . x over the vertices: exact for a convex mesh (and for
+  /// any mesh of at most kScanUpTo vertices, which are scanned).
+  std::pair<double, double> extentAlong(const Eigen::Vector3d& d) const;
+  /// A convex mesh's face normals and edge directions (unit, object frame), each listed
+  /// once up to sign: the candidate axes of the separating axis test (a box has three of
+  /// each). Both empty when the mesh is not convex or has more than
+  /// kMaxSeparatingDirections of either.
+  const std::vector<Eigen::Vector3d>& faceDirections() const { return faceDirections_; }
+  const std::vector<Eigen::Vector3d>& edgeDirections() const { return edgeDirections_; }
   /// The faces as index lists (for mass properties and output).
   std::vector<std::vector<int>> faceLists() const;
 
  private:
   bool connected() const;     // every face's vertex reachable from the first along edges
   bool foldsOutward() const;  // closed mesh: no edge folds inward
+  void findSeparatingDirections();
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<int> faceStart_;    // CSR offsets into faceIndices_, size faceCount()+1
@@ -94,7 +106,8 @@ class PolygonMesh {
   Eigen::AlignedBox3d bounds_;
   bool closed_ = false;
   bool convex_ = false;
-  std::vector<int> climbStarts_;  // the farthest vertices along the 26 directions of a cube
+  std::vector<int> climbStarts_;
+  std::vector<Eigen::Vector3d> faceDirections_, edgeDirections_;  // the farthest vertices along the 26 directions of a cube
 };
 
 }  // namespace polysim::collision

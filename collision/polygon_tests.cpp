@@ -72,8 +72,11 @@ double maxOfMinOfLines(const std::vector<std::pair<double, double>>& lines) {
 
 // How far (m) polygon p goes inside q's object, judged from q alone: the smaller of the
 // depth of p behind q's plane within q's prism (grown by eps) and the depth of p's cut
-// through q's plane inside q, measured from q's edges that are not flat.
-double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, double eps, PolygonScratch& s) {
+// through q's plane inside q, measured from q's edges that are not flat. A caller that
+// only asks whether the depth exceeds `enough` gets the cut's depth alone once that is
+// at most `enough` (the smaller of the two can only be less).
+double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, double eps, PolygonScratch& s,
+                 double enough = -1.0) {
   const double maxP = *std::max_element(dP, dP + p.size);
   Eigen::Vector3d c0, c1;
   if (!cutAtLevel(p, dP, std::min(0.0, maxP), c0, c1)) return 0.0;
@@ -94,6 +97,7 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
     lines.emplace_back(fa, cross2(e, b - s.q2[k]) / len - fa);
   }
   const double cutDepth = maxOfMinOfLines(lines);
+  if (cutDepth <= enough) return cutDepth;
 
   // p clipped to the region behind q and inside q's prism.
   s.clipA.assign(p.vertices, p.vertices + p.size);
@@ -267,8 +271,9 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   const auto [minQ, maxQ] = std::minmax_element(s.dQ.begin(), s.dQ.end());
 
   double depth = 0.0;
-  if (*minP < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));
-  if (*minQ < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
+  // Only whether the depth exceeds eps matters here.
+  if (*minP < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
+  if (*minQ < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
   if (depth > eps) return {Status::Interpenetrating, depth};
 
   std::vector<Contact>& out = contacts ? *contacts : s.discard;

@@ -8,6 +8,7 @@
 
 #include "collision/aabb.h"
 #include "collision/broadphase.h"
+#include "collision/convex_separation.h"
 #include "collision/polygon_distance.h"
 #include "collision/tolerances.h"
 
@@ -22,13 +23,14 @@ struct Search {
   IntersectionWorkspace& ws;
   int tests = 0;
 
-  // Sets the database to time t and returns the status of every pair (no contacts).
-  IntersectionResult statusAt(double t) {
+  // Sets the database to time t and returns the status of every pair, with their
+  // contacts when asked.
+  IntersectionResult statusAt(double t, bool contacts = false) {
     db.setTime(t);
     ++tests;
-    IntersectionOptions statusOnly;
-    statusOnly.contacts = false;
-    return test4Intersection(db, ws, statusOnly);
+    IntersectionOptions options;
+    options.contacts = contacts;
+    return test4Intersection(db, ws, options);
   }
 };
 
@@ -76,15 +78,33 @@ int subintervalsAgainstTunnelling(const ObjectDatabase& db) {
 }
 
 // Signed separation of the given pairs at the current state: the least over them of the
-// distance apart, or minus the deepest penetration when one goes inside; clamped to
-// [-reach, reach], where the value is only a bound.
-double signedSeparation(Search& s, const PairIds& ids, double reach) {
-  double least = reach;
+// distance apart, or minus the deepest penetration when one goes inside. Convex pairs
+// are measured exactly by the separating axis test; others polygon by polygon, only out
+// to the reach: beyond it their value is clamped to +-reach and only a bound.
+struct Separation {
+  double value = std::numeric_limits<double>::infinity();
+  bool onlyBound = false;  // the least came from a clamped measure
+  bool byAxes = true;      // every pair was measured by the separating axis test
+};
+
+Separation signedSeparation(Search& s, const PairIds& ids, double reach) {
+  Separation least;
+  auto take = [&least](double value, bool onlyBound) {
+    if (value < least.value) least.value = value, least.onlyBound = onlyBound;
+  };
   for (const auto& [a, b] : ids) {
     const ObjNode& A = s.db.objects[a];
     const ObjNode& B = s.db.objects[b];
+    if (const std::optional<double> convex = convexSeparation(A, B)) {
+      take(*convex, false);
+      continue;
+    }
+    least.byAxes = false;
     const std::optional<Eigen::AlignedBox3d> region = overlapRegion(A, B, reach);
-    if (!region) continue;
+    if (!region) {
+      take(reach, true);
+      continue;
+    }
     if (s.ws.faces.size() < s.db.objects.size()) s.ws.faces.resize(s.db.objects.size());
     WorldFaces& fa = s.ws.faces[a];
     WorldFaces& fb = s.ws.faces[b];
@@ -99,9 +119,32 @@ double signedSeparation(Search& s, const PairIds& ids, double reach) {
       return depth < reach;  // deeper than the reach is only known to be deep
     });
     depth = std::min(depth, reach);
-    least = std::min(least, depth > 0.0 ? -depth : distance);
+    const double value = depth > 0.0 ? -depth : distance;
+    take(value, std::abs(value) >= reach);
   }
   return least;
+}
+
+// True when the pairs of `ids` are convex (measured by the separating axis test) and no
+// other pair can come within eps anywhere in the interval: then the separation alone
+// tells which side of the first contact a time lies on, and the full test is needed only
+// to confirm the root.
+bool separationDecidesAlone(const ObjectDatabase& db, const PairIds& ids) {
+  for (const auto& [a, b] : ids)
+    if (!hasSeparatingAxes(*db.objects[a].mesh) || !hasSeparatingAxes(*db.objects[b].mesh)) return false;
+  const int n = static_cast<int>(db.objects.size());
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const ObjNode& A = db.objects[a];
+      const ObjNode& B = db.objects[b];
+      if ((A.isStatic && B.isStatic) || std::find(ids.begin(), ids.end(), std::pair(a, b)) != ids.end() ||
+          std::find(ids.begin(), ids.end(), std::pair(b, a)) != ids.end())
+        continue;
+      // Every pose in the interval lies within the current box grown by the motion bound.
+      if (grow(worldContainer(A), A.motionBound + db.tolerance).intersects(grow(worldContainer(B), B.motionBound)))
+        return false;
+    }
+  return true;
 }
 
 struct Bracket {
@@ -130,6 +173,8 @@ double pairMotion(const ObjectDatabase& db, const PairIds& ids) {
 struct Found {
   double time;
   TocStop stop;
+  /// The full test (with contacts) at `time`, when the search already made it.
+  std::optional<IntersectionResult> atTime = std::nullopt;
 };
 
 Found bisect(Search& s, Bracket br) {
@@ -153,9 +198,10 @@ Found regulaFalsi(Search& s, Bracket br) {
   const double reach = kSeparationReach * s.db.tolerance;
   const double target = kRootDistanceFraction * s.db.tolerance;
   s.db.setTime(br.hi);
-  double sHi = signedSeparation(s, br.hiPairs, reach);
+  Separation sHi = signedSeparation(s, br.hiPairs, reach);
+  bool alone = separationDecidesAlone(s.db, br.hiPairs);
   s.db.setTime(br.lo);
-  double sLo = signedSeparation(s, br.hiPairs, reach);
+  Separation sLo = signedSeparation(s, br.hiPairs, reach);
   int kept = 0;  // +1: lo moved last time, -1: hi moved (Illinois: halve the stale end)
   // A state in contact past the root, returned if the bracket closes before reaching
   // the target (its pairs touch, nothing interpenetrates).
@@ -164,30 +210,53 @@ Found regulaFalsi(Search& s, Bracket br) {
     // A fresh pair is chased to the exact touching time; otherwise the bracket only narrows.
     const bool narrow = br.fresh ? br.hi - br.lo < kTimeTolerance : narrowEnough(br, s.db.tolerance);
     if (narrow) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
-    double t = br.lo + sLo / (sLo - sHi) * (br.hi - br.lo);
-    // Bisect while either end's separation is beyond the reach (only a bound), or
-    // when the guess falls within this fraction of the bracket from either end (regula
-    // falsi's one-sided creep).
+    // The secant's root. When it falls within this fraction of the bracket from an end
+    // (regula falsi's one-sided creep), an exact measure (convex pairs) is trusted and
+    // the guess only kept that far from the end; the polygon measure is not, and the
+    // bracket is bisected, as it is while an end's separation is only a bound.
     constexpr double kStallFraction = 1e-3;
     const double margin = kStallFraction * (br.hi - br.lo);
-    if (!br.fresh || sLo >= reach || sHi <= -reach || !(t > br.lo + margin && t < br.hi - margin)) t = 0.5 * (br.lo + br.hi);
-    const IntersectionResult r = s.statusAt(t);
-    if (r.status == Status::Interpenetrating) br.hiPairs = interpenetratingPairs(r);
-    const double sT = signedSeparation(s, br.hiPairs, reach);
-    if (br.fresh && std::abs(sT) <= target && allInContact(r, br.hiPairs)) return {t, TocStop::Contact};
+    const double secant = br.lo + sLo.value / (sLo.value - sHi.value) * (br.hi - br.lo);
+    const bool exact = sLo.byAxes && sHi.byAxes;
+    double t = std::clamp(secant, br.lo + margin, br.hi - margin);
+    if (!br.fresh || sLo.onlyBound || sHi.onlyBound || !std::isfinite(secant) || (!exact && t != secant))
+      t = 0.5 * (br.lo + br.hi);
+    // The full test at t: always, unless the separation decides alone and t is not yet
+    // a candidate root.
+    std::optional<IntersectionResult> r;
+    bool withContacts = false;
+    auto test = [&] {
+      withContacts = alone;  // alone, this test is likely the last: it gathers the contacts
+      r = s.statusAt(t, withContacts);
+      if (r->status != Status::Interpenetrating) return;
+      br.hiPairs = interpenetratingPairs(*r);
+      alone = separationDecidesAlone(s.db, br.hiPairs);
+    };
+    if (alone) s.db.setTime(t);
+    else test();
+    Separation sT = signedSeparation(s, br.hiPairs, reach);
+    if (br.fresh && std::abs(sT.value) <= target) {
+      if (!r) test(), sT = signedSeparation(s, br.hiPairs, reach);
+      if (std::abs(sT.value) <= target && allInContact(*r, br.hiPairs)) {
+        if (withContacts) return {t, TocStop::Contact, std::move(r)};
+        return {t, TocStop::Contact};
+      }
+    }
+    const bool interpenetrating = r && r->status == Status::Interpenetrating;
     // Past the root (interpenetrating, or inside the band by more than the target): the
-    // new upper end. The state stays acceptable as a fallback only while not interpenetrating.
-    if (sT < 0 || r.status == Status::Interpenetrating) {
-      if (br.fresh && r.status != Status::Interpenetrating && allInContact(r, br.hiPairs)) fallback = t;
+    // new upper end. A tested state stays acceptable as a fallback only while not
+    // interpenetrating.
+    if (sT.value < 0 || interpenetrating) {
+      if (br.fresh && r && !interpenetrating && allInContact(*r, br.hiPairs)) fallback = t;
       br.hi = t;
       sHi = sT;
-      if (kept == -1) sLo *= 0.5;
+      if (kept == -1) sLo = {0.5 * sLo.value, false, sLo.byAxes};  // Illinois: a weight, no longer a bound
       kept = -1;
       continue;
     }
     br.lo = t;
     sLo = sT;
-    if (kept == 1) sHi *= 0.5;
+    if (kept == 1) sHi = {0.5 * sHi.value, false, sHi.byAxes};
     kept = 1;
   }
   return {fallback.value_or(br.lo), TocStop::IterationLimit};
@@ -236,9 +305,12 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
     found = options.method == TocMethod::Bisection ? bisect(s, *bracket) : regulaFalsi(s, *bracket);
   }
 
-  db.setTime(found.time);
-  const IntersectionResult final = test4Intersection(db, s.ws);
-  ++s.tests;
+  if (!found.atTime) {
+    db.setTime(found.time);
+    found.atTime = test4Intersection(db, s.ws);
+    ++s.tests;
+  }
+  const IntersectionResult& final = *found.atTime;
   result.time = found.time;
   result.status = final.status;
   result.pairs = final.pairs;

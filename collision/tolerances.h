@@ -58,6 +58,13 @@ inline constexpr double kNormalConeSlack = 1e-3;
 inline constexpr int kMinVoxelHalvings = 0;
 inline constexpr int kMaxVoxelHalvings = 16;
 
+/// Most distinct face normals (and, separately, edge directions) a convex mesh may have
+/// for the separating axis test to measure its separation (convex_separation.h): the
+/// test tries every face normal and every cross product of two edge directions, so two
+/// meshes at the limit cost 2 * 16 + 16 * 16 axes. A box has 3 and 3, a hexagonal prism 4
+/// and 4; curved shapes go over and are measured polygon by polygon instead.
+inline constexpr int kMaxSeparatingDirections = 16;
+
 /// collisionDetect() stops refining the time of contact when the bracket is narrower
 /// than this fraction of the interval: far below any physical time scale of a step,
 /// well above the round-off of t in [0, 1].
