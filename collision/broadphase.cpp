@@ -1,6 +1,7 @@
 #include "collision/broadphase.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "collision/aabb.h"
 
@@ -18,16 +19,15 @@ std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode
 
 void candidatePolygonPairs(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
                            const Eigen::AlignedBox3d& region, double eps, std::vector<FacePair>& pairs) {
-  std::vector<std::uint64_t> found;
-  forEachCandidatePair(a, facesA, b, facesB, region, eps, [&found](int fa, int fb) {
-    found.push_back(static_cast<std::uint64_t>(fa) << 32 | static_cast<std::uint32_t>(fb));
+  pairs.clear();
+  forEachCandidatePair(a, facesA, b, facesB, region, eps, [&pairs](int fa, int fb) {
+    pairs.push_back({fa, fb});
     return true;
   });
-  std::sort(found.begin(), found.end());
-  found.erase(std::unique(found.begin(), found.end()), found.end());
-  pairs.clear();
-  pairs.reserve(found.size());
-  for (std::uint64_t key : found) pairs.push_back({static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
+  auto key = [](const FacePair& p) { return std::pair(p.a, p.b); };
+  std::sort(pairs.begin(), pairs.end(), [&](const FacePair& x, const FacePair& y) { return key(x) < key(y); });
+  pairs.erase(std::unique(pairs.begin(), pairs.end(), [&](const FacePair& x, const FacePair& y) { return key(x) == key(y); }),
+              pairs.end());
 }
 
 }  // namespace polysim::collision

@@ -29,7 +29,13 @@ double perimeter(const Polygon2& poly) {
 }
 
 Polygon2 clipConvex(const Polygon2& subject, const Polygon2& clipper) {
-  Polygon2 out = subject, in;
+  Polygon2 out, work;
+  clipConvex(subject, clipper, out, work);
+  return out;
+}
+
+void clipConvex(const Polygon2& subject, const Polygon2& clipper, Polygon2& out, Polygon2& in) {
+  out.assign(subject.begin(), subject.end());
   for (size_t e = 0; e < clipper.size() && !out.empty(); ++e) {
     const Eigen::Vector2d& a = clipper[e];
     const Eigen::Vector2d edge = clipper[(e + 1) % clipper.size()] - a;
@@ -45,7 +51,6 @@ Polygon2 clipConvex(const Polygon2& subject, const Polygon2& clipper) {
       if ((sp >= 0) != (sq >= 0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
     }
   }
-  return out;
 }
 
 bool clipSegment(const Polygon2& convex, double grow, Eigen::Vector2d& a, Eigen::Vector2d& b) {

@@ -28,6 +28,8 @@ double perimeter(const Polygon2& poly);
 /// the subject by the half-plane left of each clipper edge in turn). Empty, or a polygon
 /// that may be degenerate (zero area) when they only touch.
 Polygon2 clipConvex(const Polygon2& subject, const Polygon2& clipper);
+/// The same into `out`, with `work` as scratch: no allocation once both have grown.
+void clipConvex(const Polygon2& subject, const Polygon2& clipper, Polygon2& out, Polygon2& work);
 
 /// Keeps the part of segment [a, b] inside `convex` grown outwards by `grow` (m):
 /// every edge's half-plane moved out by `grow`. Returns false when nothing is left.

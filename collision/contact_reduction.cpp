@@ -147,10 +147,11 @@ std::vector<Contact> withJointNormals(std::vector<Contact> joined, const std::ve
 
 std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps, const PairGeometry* geometry) {
   std::vector<AreaCluster> clusters;
-  std::vector<Contact> lines, points, out;
+  std::vector<const Contact*> lines, points;
+  std::vector<Contact> out;
   for (const Contact& c : raw) {
-    if (c.type == ContactType::Line) lines.push_back(c);
-    if (c.type == ContactType::Point) points.push_back(c);
+    if (c.type == ContactType::Line) lines.push_back(&c);
+    if (c.type == ContactType::Point) points.push_back(&c);
     if (c.type != ContactType::Area) continue;
     AreaCluster* home = nullptr;
     for (AreaCluster& k : clusters)
@@ -172,7 +173,7 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
 
   std::vector<AreaPolygon> areas;
   for (AreaCluster& k : clusters) {
-    for (Polygon2& merged : mergeConvexUnions(k.pieces, k.areas, eps)) {
+    for (Polygon2& merged : mergeConvexUnions(std::move(k.pieces), std::move(k.areas), eps)) {
       Polygon2 poly = simplify(std::move(merged), eps);
       Contact c;
       c.type = ContactType::Area;
@@ -191,12 +192,12 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
   // give the joined line their joint normal.
   std::vector<Contact> keptLines;
   std::vector<std::vector<const Contact*>> linePieces;
-  for (const Contact& line : lines) {
-    if (onArea(line.points[0], areas, eps) && onArea(line.points[1], areas, eps)) continue;
+  for (const Contact* line : lines) {
+    if (onArea(line->points[0], areas, eps) && onArea(line->points[1], areas, eps)) continue;
     bool joined = false;
     for (size_t k = 0; k < keptLines.size() && !joined; ++k)
-      if (joinCollinear(keptLines[k], line, eps)) joined = true, linePieces[k].push_back(&line);
-    if (!joined) keptLines.push_back(line), linePieces.push_back({&line});
+      if (joinCollinear(keptLines[k], *line, eps)) joined = true, linePieces[k].push_back(line);
+    if (!joined) keptLines.push_back(*line), linePieces.push_back({line});
   }
   for (bool changed = true; changed;) {  // joining can make two kept lines overlap
     changed = false;
@@ -213,13 +214,13 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
 
   std::vector<Contact> keptPoints;
   std::vector<std::vector<const Contact*>> pointPieces;
-  for (const Contact& point : points) {
-    const Eigen::Vector3d& x = point.points[0];
+  for (const Contact* point : points) {
+    const Eigen::Vector3d& x = point->points[0];
     bool covered = onArea(x, areas, eps);
     for (const Contact& l : keptLines) covered = covered || distanceToSegment(x, l.points[0], l.points[1]) <= eps;
     for (size_t k = 0; k < keptPoints.size() && !covered; ++k)
-      if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointPieces[k].push_back(&point);
-    if (!covered) keptPoints.push_back(point), pointPieces.push_back({&point});
+      if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointPieces[k].push_back(point);
+    if (!covered) keptPoints.push_back(*point), pointPieces.push_back({point});
   }
   keptPoints = withJointNormals(std::move(keptPoints), pointPieces, geometry, eps);
   out.insert(out.end(), keptLines.begin(), keptLines.end());

@@ -134,7 +134,8 @@ bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::ve
   for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
   s.p2.resize(p.size);
   for (int k = 0; k < p.size; ++k) s.p2[p.size - 1 - k] = frame.to2d(p.vertices[k]);  // reversed: CCW about q's normal
-  const Polygon2 overlap = clipConvex(s.q2, s.p2);
+  clipConvex(s.q2, s.p2, s.overlap, s.clipWork);
+  const Polygon2& overlap = s.overlap;
   if (overlap.size() < 3 || signedArea(overlap) <= 0.5 * eps * perimeter(overlap)) return false;
   // The gap at a corner x of the overlap (on q's plane) is how far p's plane lies above it
   // along q's normal.
@@ -142,6 +143,7 @@ bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::ve
   double gapSum = 0.0;
   Contact c = makeContact(ContactType::Area, q.plane.normal, 0.0, {Feature::Kind::Face, p.faceId},
                           {Feature::Kind::Face, q.faceId});
+  c.points.reserve(overlap.size());
   for (const Eigen::Vector2d& x2 : overlap) {
     const Eigen::Vector3d x = frame.to3d(x2);
     const double gap = p.plane.signedDistance(x) / along;

@@ -26,7 +26,7 @@ struct PolygonView {
 struct PolygonScratch {
   std::vector<double> dP, dQ;
   std::vector<Eigen::Vector3d> clipA, clipB;
-  Polygon2 p2, q2;
+  Polygon2 p2, q2, overlap, clipWork;
   std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge
   std::vector<Contact> discard;                  // contacts found when none are wanted
 };

@@ -4,12 +4,20 @@ namespace polysim::collision {
 
 void WorldFaces::reset(const ObjNode& object) {
   const int faces = object.mesh->faceCount();
-  if (object_ == nullptr || object_->mesh != object.mesh || static_cast<int>(stamp_.size()) != faces) {
+  const bool sameMesh = mesh_ == object.mesh.get() && static_cast<int>(stamp_.size()) == faces;
+  // An object that has not moved (a floor, a wall) keeps the faces already placed.
+  if (sameMesh && pose_.matrix() == object.X_WO.matrix()) {
+    object_ = &object;
+    return;
+  }
+  if (!sameMesh) {
     stamp_.assign(faces, 0);
     entries_.resize(faces);
     query_ = 0;
   }
   object_ = &object;
+  mesh_ = object.mesh.get();
+  pose_ = object.X_WO;
   ++query_;
   vertices_.clear();
   outward_.clear();

@@ -13,7 +13,9 @@ namespace polysim::collision {
 
 class WorldFaces {
  public:
-  /// Forgets the previous query's faces (O(1)) and binds to `object` at its current pose.
+  /// Binds to `object` at its current pose. Forgets the faces placed before (O(1)),
+  /// unless the object is the same mesh at the same pose as last time: a static floor
+  /// is placed once, not once per query.
   void reset(const ObjNode& object);
   /// Face f's world bounding box.
   const Eigen::AlignedBox3d& box(int f) { return entry(f).box; }
@@ -30,6 +32,8 @@ class WorldFaces {
   const Entry& entry(int f);
 
   const ObjNode* object_ = nullptr;
+  const PolygonMesh* mesh_ = nullptr;  // and pose_: what the placed faces belong to
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
   std::uint32_t query_ = 0;
   std::vector<std::uint32_t> stamp_;
   std::vector<Entry> entries_;
