@@ -1,9 +1,11 @@
 #include "collision/intersection.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "collision/contact_reduction.h"
 #include "collision/separating_plane.h"
+#include "collision/tolerances.h"
 
 namespace polysim::collision {
 
@@ -25,14 +27,15 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   facesB.reset(B);
   ws.raw.clear();
   bool touching = false;
-  auto judge = [&](int fa, int fb) {
+  auto judge = [&](int fa, int fb, const AreaCover* cover = nullptr) {
     const PolygonPairOutcome o = testPolygonPair(facesA.view(fa), facesB.view(fb), eps,
-                                                 options.contacts ? &ws.raw : nullptr, ws.scratch);
+                                                 options.contacts ? &ws.raw : nullptr, ws.scratch, cover);
     if (o.status == Status::Interpenetrating) {
       result.status = Status::Interpenetrating;
       result.depth = std::max(result.depth, o.depth);
     }
     touching = touching || o.status == Status::Contact;
+    if (o.area) ws.cover.addArea(fa, fb);
     // Without contacts there is nothing more to learn about an interpenetrating pair.
     return !(!options.contacts && result.status == Status::Interpenetrating);
   };
@@ -45,8 +48,18 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   } else {
     candidatePolygonPairs(A, facesA, B, facesB, *region, eps, ws.candidates);
     if (polygonPairsTested) *polygonPairsTested += static_cast<long>(ws.candidates.size());
+    // Face-on-face pairs first: the areas they find spare the other pairs gathering
+    // contacts that would only be dropped on those areas' boundaries (area_cover.h).
+    ws.cover.reset(*A.mesh, *B.mesh);
+    const double facingCosine = -std::cos(kFaceContactAngle);
+    auto facing = [&](const FacePair& fp) {
+      return facesA.plane(fp.a).normal.dot(facesB.plane(fp.b).normal) <= facingCosine;
+    };
     for (const FacePair& fp : ws.candidates)
-      if (!judge(fp.a, fp.b)) break;
+      if (facing(fp)) judge(fp.a, fp.b);
+    ws.cover.seal();
+    for (const FacePair& fp : ws.candidates)
+      if (!facing(fp)) judge(fp.a, fp.b, &ws.cover);
   }
   if (result.status == Status::Interpenetrating) return result;
   if (touching) {

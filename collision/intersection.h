@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "collision/area_cover.h"
 #include "collision/broadphase.h"
 #include "collision/contact.h"
 #include "collision/object.h"
@@ -37,6 +38,7 @@ struct IntersectionWorkspace {
   std::vector<FacePair> candidates;
   std::vector<Contact> raw;
   PolygonScratch scratch;
+  AreaCover cover;
 };
 
 /// Tests every pair of objects of the database at their current transforms (static pairs

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "collision/area_cover.h"
 #include "collision/segment_distance.h"
 #include "collision/tolerances.h"
 
@@ -265,7 +266,7 @@ double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, 
 }
 
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
-                                   std::vector<Contact>* contacts, PolygonScratch& s) {
+                                   std::vector<Contact>* contacts, PolygonScratch& s, const AreaCover* cover) {
   signedDistances(p, q.plane, s.dP);
   signedDistances(q, p.plane, s.dQ);
   if (outOfReach(s.dP, s.dQ, eps)) return {};
@@ -277,18 +278,20 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   if (*minP < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
   if (*minQ < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
   if (depth > eps) return {Status::Interpenetrating, depth};
+  if (cover && cover->covers(p, s.dP.data(), q, s.dQ.data(), eps)) return {Status::Contact, 0.0};
 
   std::vector<Contact>& out = contacts ? *contacts : s.discard;
   const size_t before = out.size();
   const bool facing = p.plane.normal.dot(q.plane.normal) <= -std::cos(kFaceContactAngle);
-  if (!(facing && areaContact(p, q, eps, out, s))) {
+  const bool area = facing && areaContact(p, q, eps, out, s);
+  if (!area) {
     featuresOnFace(p, s.dP.data(), q, eps, true, out, s);
     featuresOnFace(q, s.dQ.data(), p, eps, false, out, s);
     edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out);
   }
   const bool touching = out.size() > before;
   if (!contacts) s.discard.clear();
-  return {touching ? Status::Contact : Status::Separate, 0.0};
+  return {touching ? Status::Contact : Status::Separate, 0.0, area};
 }
 
 }  // namespace polysim::collision

@@ -36,7 +36,11 @@ struct PolygonPairOutcome {
   Status status = Status::Separate;
   /// For Interpenetrating, how far (m) one polygon goes inside the other's object.
   double depth = 0.0;
+  /// For Contact, the pair is face on face (its contact is an area).
+  bool area = false;
 };
+
+class AreaCover;
 
 /// Tests polygon p (of object A) against q (of object B) with contact tolerance eps (m).
 ///
@@ -46,9 +50,12 @@ struct PolygonPairOutcome {
 /// Contact: not interpenetrating, and some feature pair is within eps. Touching counts
 /// as contact. When `contacts` is non-null and the pair is in contact, its contacts
 /// (area, lines, points; normal from B towards A) are appended, possibly with
-/// duplicates that the caller merges (see contact_reduction.h).
+/// duplicates that the caller merges (see contact_reduction.h). When `cover` says an
+/// area contact already found holds whatever the pair would add, nothing is appended
+/// and the pair counts as in contact.
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
-                                   std::vector<Contact>* contacts, PolygonScratch& scratch);
+                                   std::vector<Contact>* contacts, PolygonScratch& scratch,
+                                   const AreaCover* cover = nullptr);
 
 /// How far (m) p goes inside q's object or q inside p's, measured as in testPolygonPair
 /// (0 when neither goes behind the other); not compared with any tolerance.

@@ -19,6 +19,8 @@ class WorldFaces {
   void reset(const ObjNode& object);
   /// Face f's world bounding box.
   const Eigen::AlignedBox3d& box(int f) { return entry(f).box; }
+  /// Face f's world plane.
+  const Plane& plane(int f) { return entry(f).plane; }
   /// Face f as a world-frame polygon. Its pointers stay valid until the next reset() as
   /// long as no face not seen before is asked for (box() of every face first, then views).
   PolygonView view(int f);
