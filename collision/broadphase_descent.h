@@ -41,6 +41,7 @@ void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b
   };
 
   std::vector<std::pair<VoxelCell, VoxelCell>> stack;
+  std::vector<int> nearA, nearB;
   if (inRegion(gridA, {}, regionA) && inRegion(gridB, {}, regionB)) stack.push_back({VoxelCell{}, VoxelCell{}});
   // A pair of cells is kept while both hold faces inside the overlap region and their
   // content boxes come within eps of each other. A point of A within eps of a point of B
@@ -53,11 +54,21 @@ void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b
     if (!detail::mayOverlap(boxA, boxB, X_AB, absR_AB, X_BA, eps)) continue;
     const bool leafA = gridA.isLeaf(cellA), leafB = gridB.isLeaf(cellB);
     if (leafA && leafB) {
-      for (const int* fa = gridA.facesBegin(cellA); fa != gridA.facesEnd(cellA); ++fa) {
-        const Eigen::AlignedBox3d boxFa = grow(facesA.box(*fa), eps);
-        if (!boxFa.intersects(region)) continue;
-        for (const int* fb = gridB.facesBegin(cellB); fb != gridB.facesEnd(cellB); ++fb)
-          if (boxFa.intersects(facesB.box(*fb)) && !visit(*fa, *fb)) return;
+      // Each leaf's faces that reach the other leaf's content (world boxes, within the
+      // region), then every pair of those: coarse leaves hold many faces, and most of
+      // them lie away from the other leaf.
+      const Eigen::AlignedBox3d reachA = grow(transformBox(a.X_WO, boxA), eps).intersection(region);
+      const Eigen::AlignedBox3d reachB = grow(transformBox(b.X_WO, boxB), eps).intersection(region);
+      nearA.clear();
+      nearB.clear();
+      for (const int* fa = gridA.facesBegin(cellA); fa != gridA.facesEnd(cellA); ++fa)
+        if (grow(facesA.box(*fa), eps).intersects(reachB)) nearA.push_back(*fa);
+      for (const int* fb = gridB.facesBegin(cellB); fb != gridB.facesEnd(cellB); ++fb)
+        if (facesB.box(*fb).intersects(reachA)) nearB.push_back(*fb);
+      for (const int fa : nearA) {
+        const Eigen::AlignedBox3d boxFa = grow(facesA.box(fa), eps);
+        for (const int fb : nearB)
+          if (boxFa.intersects(facesB.box(fb)) && !visit(fa, fb)) return;
       }
       continue;
     }

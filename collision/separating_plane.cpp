@@ -38,7 +38,7 @@ class CellStack {
   VoxelCell pop() { return cells_[--size_]; }
 
  private:
-  std::array<VoxelCell, kMaxVoxelHalvings + 2> cells_;
+  std::array<VoxelCell, VoxelGrid::kMostHalvings + 2> cells_;
   int size_ = 0;
 };
 

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "collision/tolerances.h"
 
 namespace polysim::collision {
 
 VoxelGrid::VoxelGrid(const PolygonMesh& mesh, int halvings, double padding) {
+  if (halvings < 0 || halvings > kMostHalvings)
+    throw std::invalid_argument("voxel halvings must lie in [0, " + std::to_string(kMostHalvings) + "]");
   container_ = Eigen::AlignedBox3d(mesh.bounds().min().array() - padding, mesh.bounds().max().array() + padding);
   const Eigen::Array3d extent = container_.sizes().array();
 
@@ -85,18 +89,19 @@ VoxelGrid::VoxelGrid(const PolygonMesh& mesh, int halvings, double padding) {
 }
 
 int VoxelGrid::chooseHalvings(const PolygonMesh& mesh) {
-  // Aim for leaf voxels about as long as a typical face: the number of halvings along an
-  // axis is log2(extent / face size), summed over the axes with room to halve.
+  // Aim for leaf voxels that a surface crosses with about kFacesPerVoxel faces: a side
+  // sqrt(kFacesPerVoxel) typical faces long. The number of halvings along an axis is
+  // log2(extent / voxel side), summed over the axes with room to halve.
   double area = 0.0;
   for (int f = 0; f < mesh.faceCount(); ++f) {
     const Eigen::Vector3d d = mesh.faceBounds(f).sizes();
     area += std::max({d.x() * d.y(), d.y() * d.z(), d.x() * d.z()});
   }
-  const double faceSize = std::sqrt(area / mesh.faceCount());
+  const double side = std::sqrt(area / mesh.faceCount() * kFacesPerVoxel);
   const Eigen::Vector3d extent = mesh.bounds().sizes();
   double m = 0.0;
   for (int k = 0; k < 3; ++k)
-    if (extent[k] > faceSize) m += std::log2(extent[k] / faceSize);
+    if (extent[k] > side) m += std::log2(extent[k] / side);
   return std::clamp(static_cast<int>(std::lround(m)), kMinVoxelHalvings, kMaxVoxelHalvings);
 }
 

@@ -23,11 +23,16 @@ struct VoxelCell {
 
 class VoxelGrid {
  public:
-  /// Builds the grid of `mesh` with M = `halvings`. The container is the mesh's bounds
-  /// grown by `padding` (m) so that flat objects still have a thickness to divide.
+  /// Most halvings a grid may be asked for (2^31 cells would overflow its indices; far
+  /// beyond what memory allows anyway).
+  static constexpr int kMostHalvings = 30;
+
+  /// Builds the grid of `mesh` with M = `halvings` in [0, kMostHalvings] (else throws
+  /// std::invalid_argument). The container is the mesh's bounds grown by `padding` (m)
+  /// so that flat objects still have a thickness to divide.
   VoxelGrid(const PolygonMesh& mesh, int halvings, double padding);
 
-  /// M for a mesh: voxels about the size of its faces, clamped to
+  /// M for a mesh: voxels holding about kFacesPerVoxel faces of its surface, clamped to
   /// [kMinVoxelHalvings, kMaxVoxelHalvings].
   static int chooseHalvings(const PolygonMesh& mesh);
 
