@@ -18,9 +18,10 @@ std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode
 }
 
 void candidatePolygonPairs(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
-                           const Eigen::AlignedBox3d& region, double eps, std::vector<FacePair>& pairs) {
+                           const Eigen::AlignedBox3d& region, double eps, DescentScratch& scratch,
+                           std::vector<FacePair>& pairs) {
   pairs.clear();
-  forEachCandidatePair(a, facesA, b, facesB, region, eps, [&pairs](int fa, int fb) {
+  forEachCandidatePair(a, facesA, b, facesB, region, eps, scratch, [&pairs](int fa, int fb) {
     pairs.push_back({fa, fb});
     return true;
   });

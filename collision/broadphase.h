@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "collision/object.h"
@@ -25,17 +26,24 @@ struct FacePair {
   int a, b;
 };
 
+/// The descent's working memory, kept between queries so that they do not allocate.
+struct DescentScratch {
+  std::vector<std::pair<VoxelCell, VoxelCell>> stack;
+  std::vector<int> nearA, nearB;
+};
+
 /// Calls visit(fa, fb) for every pair of faces whose world boxes, grown by eps, overlap
 /// inside `region`, found by descending both voxel grids together (see voxel_grid.h).
 /// A pair may be visited more than once (a face lies in several voxels). The descent
 /// stops early when visit returns false. `facesA` and `facesB` must be reset() to a, b.
 template <class Visit>
 void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
-                          const Eigen::AlignedBox3d& region, double eps, Visit&& visit);
+                          const Eigen::AlignedBox3d& region, double eps, DescentScratch& scratch, Visit&& visit);
 
 /// Every candidate pair once, in a deterministic order.
 void candidatePolygonPairs(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
-                           const Eigen::AlignedBox3d& region, double eps, std::vector<FacePair>& pairs);
+                           const Eigen::AlignedBox3d& region, double eps, DescentScratch& scratch,
+                           std::vector<FacePair>& pairs);
 
 }  // namespace polysim::collision
 

@@ -26,7 +26,7 @@ inline bool mayOverlap(const Eigen::AlignedBox3d& a, const Eigen::AlignedBox3d& 
 
 template <class Visit>
 void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
-                          const Eigen::AlignedBox3d& region, double eps, Visit&& visit) {
+                          const Eigen::AlignedBox3d& region, double eps, DescentScratch& scratch, Visit&& visit) {
   const VoxelGrid& gridA = *a.grid;
   const VoxelGrid& gridB = *b.grid;
   const Eigen::Isometry3d X_AB = a.X_WO.inverse() * b.X_WO;
@@ -40,8 +40,8 @@ void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b
     return !box.isEmpty() && box.intersects(r);
   };
 
-  std::vector<std::pair<VoxelCell, VoxelCell>> stack;
-  std::vector<int> nearA, nearB;
+  auto& [stack, nearA, nearB] = scratch;
+  stack.clear();
   if (inRegion(gridA, {}, regionA) && inRegion(gridB, {}, regionB)) stack.push_back({VoxelCell{}, VoxelCell{}});
   // A pair of cells is kept while both hold faces inside the overlap region and their
   // content boxes come within eps of each other. A point of A within eps of a point of B

@@ -43,10 +43,10 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
     // Only the verdict is wanted: judge pairs as the descent finds them (a pair may be
     // judged twice) and stop at the first interpenetration.
     long visited = 0;
-    forEachCandidatePair(A, facesA, B, facesB, *region, eps, [&](int fa, int fb) { return ++visited, judge(fa, fb); });
+    forEachCandidatePair(A, facesA, B, facesB, *region, eps, ws.descent, [&](int fa, int fb) { return ++visited, judge(fa, fb); });
     if (polygonPairsTested) *polygonPairsTested += visited;
   } else {
-    candidatePolygonPairs(A, facesA, B, facesB, *region, eps, ws.candidates);
+    candidatePolygonPairs(A, facesA, B, facesB, *region, eps, ws.descent, ws.candidates);
     if (polygonPairsTested) *polygonPairsTested += static_cast<long>(ws.candidates.size());
     // Face-on-face pairs first: the areas they find spare the other pairs gathering
     // contacts that would only be dropped on those areas' boundaries (area_cover.h).

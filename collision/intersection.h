@@ -35,6 +35,7 @@ struct IntersectionResult {
 /// repeated queries do not allocate. One workspace serves one thread.
 struct IntersectionWorkspace {
   std::vector<WorldFaces> faces;
+  DescentScratch descent;
   std::vector<FacePair> candidates;
   std::vector<Contact> raw;
   PolygonScratch scratch;

@@ -111,7 +111,7 @@ Separation signedSeparation(Search& s, const PairIds& ids, double reach) {
     fa.reset(A);
     fb.reset(B);
     double depth = 0.0, distance = reach;
-    forEachCandidatePair(A, fa, B, fb, *region, reach, [&](int pa, int pb) {
+    forEachCandidatePair(A, fa, B, fb, *region, reach, s.ws.descent, [&](int pa, int pb) {
       const PolygonView p = fa.view(pa), q = fb.view(pb);
       const double d = penetrationDepth(p, q, s.db.tolerance, s.ws.scratch);
       if (d > 0.0) depth = std::max(depth, d);
@@ -225,18 +225,21 @@ Found regulaFalsi(Search& s, Bracket br) {
     // a candidate root.
     std::optional<IntersectionResult> r;
     bool withContacts = false;
-    auto test = [&] {
+    auto test = [&] {  // true when it found other pairs interpenetrating
       withContacts = alone;  // alone, this test is likely the last: it gathers the contacts
       r = s.statusAt(t, withContacts);
-      if (r->status != Status::Interpenetrating) return;
-      br.hiPairs = interpenetratingPairs(*r);
+      if (r->status != Status::Interpenetrating) return false;
+      PairIds now = interpenetratingPairs(*r);
+      if (now == br.hiPairs) return false;
+      br.hiPairs = std::move(now);
       alone = separationDecidesAlone(s.db, br.hiPairs);
+      return true;
     };
     if (alone) s.db.setTime(t);
     else test();
     Separation sT = signedSeparation(s, br.hiPairs, reach);
     if (br.fresh && std::abs(sT.value) <= target) {
-      if (!r) test(), sT = signedSeparation(s, br.hiPairs, reach);
+      if (!r && test()) sT = signedSeparation(s, br.hiPairs, reach);
       if (std::abs(sT.value) <= target && allInContact(*r, br.hiPairs)) {
         if (withContacts) return {t, TocStop::Contact, std::move(r)};
         return {t, TocStop::Contact};
