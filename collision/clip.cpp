@@ -72,9 +72,10 @@ bool clipSegment(const Polygon2& convex, double grow, Eigen::Vector2d& a, Eigen:
     else t1 = std::min(t1, t);
     if (t0 > t1) return false;
   }
+  // An end the clip did not move is kept exactly (callers compare it).
   const Eigen::Vector2d a0 = a;
-  a = a0 + t0 * d;
-  b = a0 + t1 * d;
+  if (t0 > 0.0) a = a0 + t0 * d;
+  if (t1 < 1.0) b = a0 + t1 * d;
   return true;
 }
 

@@ -32,7 +32,8 @@ Polygon2 clipConvex(const Polygon2& subject, const Polygon2& clipper);
 void clipConvex(const Polygon2& subject, const Polygon2& clipper, Polygon2& out, Polygon2& work);
 
 /// Keeps the part of segment [a, b] inside `convex` grown outwards by `grow` (m):
-/// every edge's half-plane moved out by `grow`. Returns false when nothing is left.
+/// every edge's half-plane moved out by `grow`. Returns false when nothing is left. An
+/// end inside is left exactly as it was.
 bool clipSegment(const Polygon2& convex, double grow, Eigen::Vector2d& a, Eigen::Vector2d& b);
 
 /// Distance from p to a convex counter-clockwise polygon: 0 inside, else to the boundary.

@@ -161,6 +161,9 @@ bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::ve
 // normal `normal` (from B towards A). `pIsA` tells which object p belongs to.
 void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q, double eps, bool pIsA,
                     std::vector<Contact>& out, PolygonScratch& s) {
+  // Most calls find no vertex of p near q's plane (a floor's far corners against a box's
+  // face): nothing to project.
+  if (std::none_of(dP, dP + p.size, [eps](double d) { return std::abs(d) <= eps; })) return;
   const PlaneFrame frame(q.vertices[0], q.plane.normal);
   s.q2.resize(q.size);
   for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
@@ -169,17 +172,25 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
     Feature onQ{Feature::Kind::Face, q.faceId};
     return pIsA ? std::make_pair(onP, onQ) : std::make_pair(onQ, onP);
   };
+  // Vertices that end a line contact already reported: their point contact would only be
+  // dropped on that line by the reduction.
+  s.onLine.assign(p.size, 0);
   for (int i = 0; i < p.size; ++i) {
     const int j = (i + 1) % p.size;
     if (std::abs(dP[i]) > eps) continue;
     if (std::abs(dP[j]) <= eps) {  // edge i lies along q's plane
       // Within eps of q decides contact; the reported segment is the part over q itself
       // (the grown clip would add eps-long stubs at q's corners).
-      Eigen::Vector2d a = frame.to2d(p.vertices[i]), b = frame.to2d(p.vertices[j]);
-      Eigen::Vector2d a0 = a, b0 = b;
+      const Eigen::Vector2d vi = frame.to2d(p.vertices[i]), vj = frame.to2d(p.vertices[j]);
+      Eigen::Vector2d a = vi, b = vj, a0 = vi, b0 = vj;
       if (clipSegment(s.q2, eps, a, b)) {
         const bool isLine = clipSegment(s.q2, 0.0, a0, b0) && (b0 - a0).norm() > eps;
-        if (isLine) a = a0, b = b0;
+        if (isLine) {
+          // A vertex the clip kept lies over q: the line's end is its contact.
+          s.onLine[i] = s.onLine[i] || a0 == vi;
+          s.onLine[j] = b0 == vj;
+          a = a0, b = b0;
+        }
         const double gap = 0.5 * (dP[i] + dP[j]);
         const Eigen::Vector3d shift = (0.5 * gap) * q.plane.normal;
         const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
@@ -189,7 +200,7 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
         out.push_back(std::move(c));
       }
     }
-    if (distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {
+    if (!s.onLine[i] && distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {
       const auto [fa, fb] = features({Feature::Kind::Vertex, p.vertexIds[i]});
       Contact c = makeContact(ContactType::Point, normal, dP[i], fa, fb);
       c.points = {p.vertices[i] - (0.5 * dP[i]) * q.plane.normal};
@@ -213,6 +224,11 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
       if (farFromPlane(dQ[j], dQ[j1])) continue;
       const Eigen::Vector3d& q0 = q.vertices[j];
       const Eigen::Vector3d v = q.vertices[j1] - q0;
+      // Edges whose boxes lie more than eps apart (a long edge of a floor far from a
+      // small object's edges) cannot come within eps.
+      const Eigen::Array3d gapBelow = q0.array().min(q0.array() + v.array()) - p0.array().max(p0.array() + u.array());
+      const Eigen::Array3d gapAbove = p0.array().min(p0.array() + u.array()) - q0.array().max(q0.array() + v.array());
+      if ((gapBelow.max(gapAbove) > eps).any()) continue;
       const SegmentClosestPoints cp = closestPointsOnSegments(p0, u, q0, v);
       if (cp.distance > eps) continue;
       const Eigen::Vector3d outward = q.edgeOutward[j] - p.edgeOutward[i];

@@ -29,6 +29,7 @@ struct PolygonScratch {
   Polygon2 p2, q2, overlap, clipWork;
   std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge
   std::vector<Contact> discard;                  // contacts found when none are wanted
+  std::vector<char> onLine;                      // per vertex of a polygon: ends a line contact
 };
 
 /// The verdict for one polygon pair.

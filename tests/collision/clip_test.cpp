@@ -27,6 +27,18 @@ TEST(Clip, SegmentIsCutAtTheGrownBoundary) {
   EXPECT_FALSE(clipSegment(square(1.0), 0.25, c, d));
 }
 
+TEST(Clip, SegmentEndsInsideAreKeptExactly) {
+  // Callers compare a kept end with the vertex it came from (polygon_tests.cpp).
+  const V2 inside(0.1 / 3, -0.7 / 3), outside(5.0 / 7, 3.1);
+  V2 a = inside, b = outside;
+  ASSERT_TRUE(clipSegment(square(1.0), 0.0, a, b));
+  EXPECT_EQ(a, inside);
+  EXPECT_NE(b, outside);
+  V2 c = outside, d = inside;
+  ASSERT_TRUE(clipSegment(square(1.0), 0.0, c, d));
+  EXPECT_EQ(d, inside);
+}
+
 TEST(Clip, HullDropsInteriorAndCollinearPoints) {
   const Polygon2 hull = convexHull({V2(0, 0), V2(1, 0), V2(2, 0), V2(2, 2), V2(0, 2), V2(1, 1)});
   EXPECT_EQ(hull.size(), 4u);
