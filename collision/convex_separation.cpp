@@ -42,12 +42,22 @@ void extents(const PolygonMesh& mesh, const Axes& axes, double* lo, double* hi) 
   }
   std::fill(lo, lo + n, kInfinity);
   std::fill(hi, hi + n, -kInfinity);
-  for (const Eigen::Vector3d& v : vertices)
+  const bool mirrored = !mesh.mirroredHalf().empty();
+  for (const Eigen::Vector3d& v : mirrored ? mesh.mirroredHalf() : vertices)
     for (int k = 0; k < n; ++k) {
       const double level = axes.x[k] * v.x() + axes.y[k] * v.y() + axes.z[k] * v.z();
       lo[k] = std::min(lo[k], level);
       hi[k] = std::max(hi[k], level);
     }
+  if (!mirrored) return;
+  // The mirror of a vertex at level l lies at 2 c - l, c the centre's level.
+  const Eigen::Vector3d& c = mesh.centre();
+  for (int k = 0; k < n; ++k) {
+    const double twice = 2.0 * (axes.x[k] * c.x() + axes.y[k] * c.y() + axes.z[k] * c.z());
+    const double mirroredLo = twice - hi[k], mirroredHi = twice - lo[k];
+    lo[k] = std::min(lo[k], mirroredLo);
+    hi[k] = std::max(hi[k], mirroredHi);
+  }
 }
 
 }  // namespace

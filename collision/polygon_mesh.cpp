@@ -214,6 +214,26 @@ void PolygonMesh::findSeparatingDirections() {
   for (size_t e = 0; e < edges_.size() && few; ++e)
     few = addDistinct(edgeDirections_, (vertices_[edges_[e].v1] - vertices_[edges_[e].v0]).normalized());
   if (!few) faceDirections_.clear(), edgeDirections_.clear();
+  if (few && vertices_.size() <= kScanUpTo) findMirroredHalf();
+}
+
+void PolygonMesh::findMirroredHalf() {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : vertices_) centre += v;
+  centre /= static_cast<double>(vertices_.size());
+  std::vector<char> paired(vertices_.size(), 0);
+  std::vector<Eigen::Vector3d> half;
+  for (size_t i = 0; i < vertices_.size(); ++i) {
+    if (paired[i]) continue;
+    const Eigen::Vector3d mirror = 2.0 * centre - vertices_[i];
+    size_t j = i + 1;
+    while (j < vertices_.size() && (paired[j] || (vertices_[j] - mirror).norm() > kPlanarityTolerance)) ++j;
+    if (j == vertices_.size()) return;  // not symmetric (a vertex at the centre has no pair either)
+    paired[i] = paired[j] = 1;
+    half.push_back(vertices_[i]);
+  }
+  centre_ = centre;
+  mirroredHalf_ = std::move(half);
 }
 
 bool PolygonMesh::connected() const {

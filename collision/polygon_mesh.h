@@ -84,6 +84,13 @@ class PolygonMesh {
   /// kMaxSeparatingDirections of either.
   const std::vector<Eigen::Vector3d>& faceDirections() const { return faceDirections_; }
   const std::vector<Eigen::Vector3d>& edgeDirections() const { return edgeDirections_; }
+  /// For a convex mesh with separating directions whose vertices pair up mirrored
+  /// through their centroid (a box, an even prism): one vertex of each pair. The extent
+  /// along any direction follows from these and centre() alone, at half the scan.
+  /// Empty otherwise.
+  const std::vector<Eigen::Vector3d>& mirroredHalf() const { return mirroredHalf_; }
+  /// The centroid of the vertices, when mirroredHalf() is not empty.
+  const Eigen::Vector3d& centre() const { return centre_; }
   /// The faces as index lists (for mass properties and output).
   std::vector<std::vector<int>> faceLists() const;
 
@@ -91,6 +98,7 @@ class PolygonMesh {
   bool connected() const;     // every face's vertex reachable from the first along edges
   bool foldsOutward() const;  // closed mesh: no edge folds inward
   void findSeparatingDirections();
+  void findMirroredHalf();
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<int> faceStart_;    // CSR offsets into faceIndices_, size faceCount()+1
@@ -106,8 +114,10 @@ class PolygonMesh {
   Eigen::AlignedBox3d bounds_;
   bool closed_ = false;
   bool convex_ = false;
-  std::vector<int> climbStarts_;
-  std::vector<Eigen::Vector3d> faceDirections_, edgeDirections_;  // the farthest vertices along the 26 directions of a cube
+  std::vector<int> climbStarts_;  // the farthest vertices along the 26 directions of a cube
+  std::vector<Eigen::Vector3d> faceDirections_, edgeDirections_;
+  std::vector<Eigen::Vector3d> mirroredHalf_;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace polysim::collision

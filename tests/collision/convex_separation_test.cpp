@@ -75,16 +75,33 @@ TEST(ConvexSeparation, NoMeasureForNonConvexOrCurvedMeshes) {
   EXPECT_FALSE(convexSeparation(spheres.objects[0], spheres.objects[1]).has_value());
 }
 
-// On random poses of a box and a hexagonal prism the measure agrees with the polygon
-// tests: more than eps apart means separate, and separate means apart (positive).
-TEST(ConvexSeparation, AgreesWithTheIntersectionTestOnRandomPoses) {
-  std::mt19937 rng(5);
+// A wedge: a right triangle 1 x 0.6 extruded 0.8 deep. Convex, not symmetric about any
+// point (its extents are found by scanning all its vertices).
+MeshData makeWedge() {
+  using V = Eigen::Vector2d;
+  return test::extrudeProfile({{V(0, 0), V(1, 0), V(0, 0.6)}}, {V(0, 0), V(1, 0), V(0, 0.6)}, 0.8);
+}
+
+TEST(ConvexSeparation, BoxesAndEvenPrismsAreScannedByHalfWedgesWhole) {
+  const PolygonMesh box(makeBox(V3(1, 2, 3))), prism(test::makeHexPrism(1.0, 0.5)), wedge(makeWedge());
+  EXPECT_EQ(box.mirroredHalf().size(), 4u);
+  EXPECT_TRUE(box.centre().isZero(1e-15));
+  EXPECT_EQ(prism.mirroredHalf().size(), 6u);
+  EXPECT_TRUE(wedge.mirroredHalf().empty());
+}
+
+// On random poses of a box and another convex shape the measure agrees with the polygon
+// tests: more than eps apart means separate, separate means apart (positive), and more
+// than eps overlapping along every axis means interpenetrating (collisionDetect's scan
+// relies on the last).
+void expectAgreementOnRandomPoses(const MeshData& other, unsigned seed) {
+  std::mt19937 rng(seed);
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> distance(0.3, 1.6);
   int apart = 0, overlapping = 0;
   for (int trial = 0; trial < 500; ++trial) {
     const auto rotation = [&] { return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix(); };
-    const ObjectDatabase db = pairAt(makeBox(V3(1, 0.6, 0.8)), pose(V3::Zero(), rotation()), test::makeHexPrism(0.5, 0.7),
+    const ObjectDatabase db = pairAt(makeBox(V3(1, 0.6, 0.8)), pose(V3::Zero(), rotation()), other,
                                      pose(distance(rng) * V3(g(rng), g(rng), g(rng)).normalized(), rotation()));
     const double s = *convexSeparation(db.objects[0], db.objects[1]);
     const Status status = test4Intersection(db).status;
@@ -94,11 +111,22 @@ TEST(ConvexSeparation, AgreesWithTheIntersectionTestOnRandomPoses) {
     if (status == Status::Separate) {
       EXPECT_GT(s, 0.0) << "trial " << trial;
     }
+    if (s < -db.tolerance) {
+      EXPECT_EQ(status, Status::Interpenetrating) << "trial " << trial << ", separation " << s;
+    }
     apart += s > db.tolerance;
     overlapping += s < -db.tolerance;
   }
   EXPECT_GT(apart, 100);  // both sides are exercised
   EXPECT_GT(overlapping, 100);
+}
+
+TEST(ConvexSeparation, AgreesWithTheIntersectionTestOnRandomPosesOfABoxAndAPrism) {
+  expectAgreementOnRandomPoses(test::makeHexPrism(0.5, 0.7), 5);
+}
+
+TEST(ConvexSeparation, AgreesWithTheIntersectionTestOnRandomPosesOfABoxAndAWedge) {
+  expectAgreementOnRandomPoses(makeWedge(), 6);
 }
 
 }  // namespace
