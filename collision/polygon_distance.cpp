@@ -9,6 +9,14 @@
 namespace polysim::collision {
 namespace {
 
+// The least signed distance of p's vertices from the plane: how far p lies wholly in
+// front of it (negative when p reaches behind).
+double lowestAbove(const PolygonView& p, const Plane& plane) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < p.size; ++i) lowest = std::min(lowest, plane.signedDistance(p.vertices[i]));
+  return lowest;
+}
+
 // Distance from the vertices of p to face q, for the vertices that project inside q.
 double verticesToFace(const PolygonView& p, const PolygonView& q, PolygonScratch& s) {
   const PlaneFrame frame(q.vertices[0], q.plane.normal);
@@ -40,7 +48,9 @@ bool edgePierces(const PolygonView& p, const PolygonView& q, PolygonScratch& s) 
 
 }  // namespace
 
-double polygonDistance(const PolygonView& p, const PolygonView& q, PolygonScratch& s) {
+double polygonDistance(const PolygonView& p, const PolygonView& q, PolygonScratch& s, double least) {
+  const double gap = std::max(lowestAbove(p, q.plane), lowestAbove(q, p.plane));
+  if (gap >= least) return gap;
   if (edgePierces(p, q, s) || edgePierces(q, p, s)) return 0.0;
   double best = std::min(verticesToFace(p, q, s), verticesToFace(q, p, s));
   for (int i = 0; i < p.size; ++i)

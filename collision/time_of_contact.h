@@ -14,9 +14,12 @@ namespace polysim::collision {
 enum class TocMethod {
   /// The seed's method: the middle of the bracket, until the state is contact.
   Bisection,
-  /// Regula falsi (Illinois variant) on the signed separation of the pairs that
-  /// interpenetrate (distance apart, minus depth inside), with a bisection step whenever
-  /// it stalls; aims at the exact touching time.
+  /// Regula falsi (Illinois variant, with interpolation through the latest points for
+  /// exact measures) on the signed separation of the pairs that interpenetrate (distance
+  /// apart, minus depth inside), with a bisection step whenever it stalls; aims at the
+  /// exact touching time. Where the separating axis test measures every pair that can
+  /// meet (convex objects with few face directions), it also scans the sub-intervals
+  /// and tests only to decide the band within the tolerance and to confirm the root.
   RegulaFalsi,
 };
 
@@ -42,6 +45,9 @@ struct TocResult {
   std::vector<PairResult> pairs;
   /// Intersection tests made (each setTime + test counts one).
   int iterations = 0;
+  /// States whose signed separation regula falsi measured instead of testing them (0
+  /// for bisection); a separation of convex objects costs a fraction of a test.
+  int separations = 0;
   /// Sub-intervals the interval was split into against tunnelling (1: none).
   int subintervals = 1;
   TocStop stoppedBy = TocStop::NoInterpenetration;

@@ -82,6 +82,7 @@ void runQueries(benchmark::State& state, Scenario& s) {
   state.counters["time"] = r.time;
   state.counters["error"] = std::abs(r.time - s.reference);
   state.counters["tests"] = r.iterations;
+  state.counters["separations"] = r.separations;
   state.counters["subintervals"] = r.subintervals;
 }
 
@@ -98,6 +99,26 @@ void BM_ConvexSeparation_CubeAndSlab(benchmark::State& state) {
 }
 
 BENCHMARK(BM_ConvexSeparation_CubeAndSlab);
+
+// The test every query ends with: test4Intersection() with contacts at the turning
+// cube's time of contact (an edge on the slab: a line contact).
+void BM_ContactTest_TurningCubeAtContact(benchmark::State& state) {
+  std::unique_ptr<Scenario> s = cubeOntoSlab(true);
+  s->db.setTime(s->reference);
+  IntersectionWorkspace workspace;
+  IntersectionOptions options;
+  options.contacts = true;
+  IntersectionResult r;
+  for (auto _ : state) {
+    r = test4Intersection(s->db, workspace, options);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["polygonPairs"] = static_cast<double>(r.polygonPairsTested);
+  state.counters["contacts"] = r.pairs.empty() ? 0.0 : static_cast<double>(r.pairs[0].contacts.size());
+  state.counters["raw"] = static_cast<double>(workspace.raw.size());
+}
+
+BENCHMARK(BM_ContactTest_TurningCubeAtContact);
 
 BENCHMARK(BM_Toc_CubeOntoSlab)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Toc_TurningCubeOntoSlab)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);

@@ -96,10 +96,13 @@ TEST_P(TimeOfContact, BoxTurningOntoItsEdge) {
     EXPECT_EQ(r.pairs[0].contacts[0].type, ContactType::Line);
     const auto& line = r.pairs[0].contacts[0].points;
     EXPECT_NEAR((line[1] - line[0]).norm(), 1.0, 1e-6);
-    // Regula falsi on the separating-axis measure of a lone convex pair: the scan, one
-    // confirming test at the root, no tests in between.
+    // Regula falsi on the separating-axis measure of a lone convex pair: the scan and the
+    // search measure separations; one test, at the root, confirms it and gives the contacts.
     if (GetParam() == TocMethod::RegulaFalsi) {
-      EXPECT_LE(r.iterations, r.subintervals + 1);
+      EXPECT_EQ(r.iterations, 1);
+      EXPECT_LE(r.separations, r.subintervals + 8);  // halving to this precision takes about 20
+    } else {
+      EXPECT_EQ(r.separations, 0);
     }
   }
 }
@@ -131,6 +134,18 @@ TEST_P(TimeOfContact, BoxSlidingAlongTheFloor) {
   EXPECT_EQ(r.time, 1.0);
   EXPECT_EQ(r.status, Status::Contact);
   EXPECT_NEAR(r.pairs[0].contacts[0].points[0].x(), 1.5 + 0.5, 1e-9);
+}
+
+TEST_P(TimeOfContact, BoxSlidingWithinTheContactBand) {
+  // Half the tolerance into the floor: overlapping along every axis, yet in contact, not
+  // interpenetrating; nothing to back up from.
+  World w;
+  w.addStatic(kSlab, kSlabPose);
+  w.addMoving(kCube, pose(V3(0, 0, 0.5 - 0.5 * kEps)), V3(1.5, 0, 0));
+  const TocResult r = w.detect(GetParam());
+  EXPECT_EQ(r.time, 1.0);
+  EXPECT_EQ(r.status, Status::Contact);
+  EXPECT_EQ(r.stoppedBy, TocStop::NoInterpenetration);
 }
 
 TEST_P(TimeOfContact, SmallBoxLandsOnTheCupsFloorNotItsRim) {

@@ -1,0 +1,89 @@
+#pragma once
+// The internals of collisionDetect() (time_of_contact.h), shared by the scan of the
+// interval (time_of_contact.cpp) and the root finders that refine a bracket
+// (toc_root_finders.cpp). Not part of the module's interface.
+
+#include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "collision/intersection.h"
+#include "collision/object.h"
+#include "collision/time_of_contact.h"
+
+namespace polysim::collision::toc {
+
+/// Object index pairs, each (a, b) with a < b, in increasing order.
+using PairIds = std::vector<std::pair<int, int>>;
+
+/// The pairs that may come within the tolerance somewhere in the interval: not both
+/// static, and their world boxes grown by their motion bounds overlap.
+PairIds pairsThatCanMeet(const ObjectDatabase& db);
+
+/// The state of the search: the database, its workspace, the pairs that can meet in the
+/// interval and the count of tests made.
+struct Search {
+  ObjectDatabase& db;
+  IntersectionWorkspace& ws;
+  PairIds meeting = pairsThatCanMeet(db);
+  int tests = 0;
+  int separations = 0;  // states whose signed separation was measured
+
+  /// Sets the database to time t and returns the status of every pair, with their
+  /// contacts when asked.
+  IntersectionResult statusAt(double t, bool contacts = false);
+};
+
+PairIds interpenetratingPairs(const IntersectionResult& r);
+/// True when every pair of `ids` is in contact (not separate, not interpenetrating) in r.
+bool allInContact(const IntersectionResult& r, const PairIds& ids);
+/// True when no pair of `ids` is in contact in r.
+bool noneInContact(const IntersectionResult& r, const PairIds& ids);
+
+/// Signed separation (m) of some pairs at the current state: the least over them of the
+/// distance apart, or minus the deepest penetration when one goes inside. Convex pairs
+/// are measured exactly by the separating axis test; others polygon by polygon, only out
+/// to the reach: beyond it their value is clamped to +-reach and only a bound.
+struct Separation {
+  double value = std::numeric_limits<double>::infinity();
+  bool onlyBound = false;  // the least came from a clamped measure
+  bool byAxes = true;      // every pair was measured by the separating axis test
+};
+Separation signedSeparation(Search& s, const PairIds& ids, double reach);
+
+/// True when both objects of every pair list separating axes (convex_separation.h).
+bool measuredByAxes(const ObjectDatabase& db, const PairIds& ids);
+/// True when the pairs of `ids` are convex (measured by the separating axis test) and no
+/// other pair can meet in the interval: then the
+/// separation alone tells which side of the first contact a time lies on, and the full
+/// test is needed only to confirm the root.
+bool separationDecidesAlone(const Search& s, const PairIds& ids);
+
+/// An interval known to hold the first contact.
+struct Bracket {
+  Bracket(double lo, double hi, PairIds hiPairs) : lo(lo), hi(hi), hiPairs(std::move(hiPairs)) {}
+  double lo, hi;
+  PairIds hiPairs;  // the pairs interpenetrating at hi
+  /// False when one of hiPairs already touched at the bracket's start: then "the pair is
+  /// in contact" says nothing about the new touch, and only narrowing the bracket helps.
+  bool fresh = true;
+  /// Largest relative motion (m) of the objects over the whole interval [0, 1].
+  double motion = 0.0;
+  /// The separation of hiPairs at lo and at hi, when the scan measured them.
+  std::optional<Separation> atLo, atHi;
+};
+
+struct Found {
+  double time;
+  TocStop stop;
+  /// The full test (with contacts) at `time`, when the search already made it.
+  std::optional<IntersectionResult> atTime = std::nullopt;
+};
+
+/// The seed's root finder: halves the bracket until the state is contact.
+Found bisect(Search& s, Bracket br);
+/// Regula falsi on the signed separation of the bracket's pairs (TocMethod::RegulaFalsi).
+Found regulaFalsi(Search& s, Bracket br);
+
+}  // namespace polysim::collision::toc
