@@ -77,15 +77,17 @@ std::optional<Bracket> scanBySeparation(Search& s, int subintervals) {
     Bracket br{lo, t, {}};
     Separation least;
     bool unsure = false;
-    ++s.separations;
+    bool measured = false;
     for (const auto& [a, b] : s.meeting) {
       const ObjNode& A = s.db.objects[a];
       const ObjNode& B = s.db.objects[b];
       if (!grow(worldContainer(A), eps).intersects(worldContainer(B))) continue;
       const double separation = *convexSeparation(A, B);
+      measured = true;
       if (separation < -eps) br.hiPairs.emplace_back(a, b), least.value = std::min(least.value, separation);
       else unsure = unsure || separation < 0.0;
     }
+    s.separations += measured;
     if (unsure) {
       const IntersectionResult r = s.statusAt(t);
       if (r.status == Status::Interpenetrating) return Bracket{lo, t, interpenetratingPairs(r)};
