@@ -53,8 +53,8 @@ inline constexpr double kNormalConeSlack = 1e-3;
 /// Bounds on the number of times the voxel grid halves an object's container (M).
 /// Garcia-Alonso et al. found 8 or 9 best for their meshes; polysim picks M so that the
 /// surface crosses each leaf voxel with about kFacesPerVoxel faces
-/// (VoxelGrid::chooseHalvings): a box needs none, a 20480-triangle sphere 12, a 10 m
-/// floor of 20000 triangles 9. The benchmark in tests/bench sweeps M.
+/// (VoxelGrid::chooseHalvings): a box needs none, a 20480-triangle sphere 10, a 10 m
+/// floor of 20000 triangles 8. The benchmark in tests/bench sweeps M.
 /// The upper bound caps the grid's memory (2^(M+1) cells of 48 bytes: 6 MB at 16).
 inline constexpr int kMinVoxelHalvings = 0;
 inline constexpr int kMaxVoxelHalvings = 16;
@@ -62,9 +62,11 @@ inline constexpr int kMaxVoxelHalvings = 16;
 /// Faces a leaf voxel should hold. Measured on the issue-2 benchmarks: a box on a
 /// triangulated floor wants coarse voxels (many faces each: the contact patch covers
 /// hundreds of faces and fine voxels list each face several times), the tip of one
-/// sphere in another wants fine ones; about 16 faces is within 10-20% of the best M on
-/// both (see the note of issue 2 and tests/bench/intersection_bench.cpp).
-inline constexpr double kFacesPerVoxel = 16.0;
+/// sphere in another wants finer ones. 32 gives the best M measured for both the
+/// 20480-triangle sphere (M 10: 6.5 us where 16 faces, M 12, took 14.6 us) and the
+/// 20000-triangle floor (M 8); 64 was 50% slower on the floors (see the note of issue 2
+/// and tests/bench/intersection_bench.cpp).
+inline constexpr double kFacesPerVoxel = 32.0;
 
 /// Most distinct face normals (and, separately, edge directions) a convex mesh may have
 /// for the separating axis test to measure its separation (convex_separation.h): the

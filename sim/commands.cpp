@@ -67,6 +67,7 @@ int tocCommand(const std::string& scenePath, double interval, const std::string&
   j["method"] = collision::toString(options.method);
   j["stopped_by"] = collision::toString(r.stoppedBy);
   j["subintervals"] = r.subintervals;
+  j["separations"] = r.separations;
   out << j.dump() << "\n";
   return 0;
 }
