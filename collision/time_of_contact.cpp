@@ -103,8 +103,7 @@ std::optional<Bracket> scanBySeparation(Search& s, int subintervals) {
 // pairs already touch there (Bracket::fresh), and that nothing interpenetrates at t = 0.
 // From the scan's last state when it kept one; measured by the separating axis test when
 // that scanned (only a pair within the tolerance then needs the full test).
-void startBracket(Search& s, Bracket& br, bool byAxes,
-                  std::optional<IntersectionResult> atStart) {
+void startBracket(Search& s, Bracket& br, bool byAxes, std::optional<IntersectionResult> atStart) {
   br.motion = pairMotion(s.db, br.hiPairs);
   if (byAxes) {
     s.db.setTime(br.lo);

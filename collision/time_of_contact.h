@@ -29,7 +29,7 @@ enum class TocStop {
   Contact,             // found a state of just contact before the interpenetration
   TimeTolerance,       // the bracket narrowed until nothing moves more than the contact
                        // tolerance inside it (kTimeTolerance without motion bounds): returned its start
-  IterationLimit,      // kMaxTimeOfContactIterations tests made: returned the bracket's start
+  IterationLimit,      // kMaxTimeOfContactIterations guesses made: returned the bracket's start
 };
 
 struct TocOptions {

@@ -136,7 +136,7 @@ bool narrowEnough(const Bracket& br, double eps) {
 }  // namespace
 
 Found bisect(Search& s, Bracket br) {
-  while (s.tests < kMaxTimeOfContactIterations) {
+  for (int guess = 0; guess < kMaxTimeOfContactIterations; ++guess) {
     if (narrowEnough(br, s.db.tolerance)) return {br.lo, TocStop::TimeTolerance};
     const double t = 0.5 * (br.lo + br.hi);
     const IntersectionResult r = s.statusAt(t);
@@ -191,7 +191,7 @@ Found regulaFalsi(Search& s, Bracket br) {
   // A state in contact past the root, returned if the bracket closes before reaching
   // the target (its pairs touch, nothing interpenetrates).
   std::optional<double> fallback;
-  while (s.tests < kMaxTimeOfContactIterations) {
+  for (int guess = 0; guess < kMaxTimeOfContactIterations; ++guess) {
     // A fresh pair is chased to the exact touching time; otherwise the bracket only narrows.
     const bool narrow = br.fresh ? br.hi - br.lo < kTimeTolerance : narrowEnough(br, s.db.tolerance);
     if (narrow) return {fallback.value_or(br.lo), TocStop::TimeTolerance};

@@ -90,8 +90,9 @@ inline constexpr double kRootDistanceFraction = 1e-3;
 /// that measuring touches only the polygons near the contact.
 inline constexpr double kSeparationReach = 64.0;
 
-/// Most intersection tests one collisionDetect() call may make while refining, a guard
-/// against non-convergence (bisection needs log2(1/kTimeTolerance) = 30).
+/// Most guesses (each a test or a separation measure) a root finder of collisionDetect()
+/// may make while refining a bracket, a guard against non-convergence (bisection needs
+/// log2(1/kTimeTolerance) = 30). The scan of the sub-intervals before it is not counted.
 inline constexpr int kMaxTimeOfContactIterations = 100;
 
 /// Between two tests, no point may move (relative to the other object) more than this

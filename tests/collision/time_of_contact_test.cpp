@@ -165,11 +165,15 @@ TEST_P(TimeOfContact, FastSmallBoxIsCaughtByAThinPlate) {
   World w;
   w.addStatic(makeBox(V3(10, 10, 0.01)), pose(V3::Zero()));  // top at 0.005
   // 0.1 box moving 10 m in the interval: at t = 1 it is far below, clear of the plate.
-  w.addMoving(makeBox(V3(0.1, 0.1, 0.1)), pose(V3(0, 0, 1.0)), V3(0, 0, -10.0));
+  // The contact falls inside a sub-interval (not at an end), after hundreds of scan
+  // tests: the root finder still has its own guesses to refine it.
+  const double start = 1.00123;
+  w.addMoving(makeBox(V3(0.1, 0.1, 0.1)), pose(V3(0, 0, start)), V3(0, 0, -10.0));
   const TocResult r = w.detect(GetParam());
-  EXPECT_GT(r.subintervals, 1);
+  EXPECT_GT(r.subintervals, 100);
   EXPECT_EQ(r.status, Status::Contact);
-  EXPECT_NEAR(r.time, (1.0 - 0.05 - 0.005) / 10.0, timeTolerance(GetParam(), 10.0));
+  EXPECT_NE(r.stoppedBy, TocStop::IterationLimit);
+  EXPECT_NEAR(r.time, (start - 0.05 - 0.005) / 10.0, timeTolerance(GetParam(), 10.0));
 }
 
 TEST_P(TimeOfContact, TouchingObjectsMovingApart) {
