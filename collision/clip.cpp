@@ -1,9 +1,9 @@
 #include "collision/clip.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-
 
 namespace polysim::collision {
 
@@ -41,6 +41,9 @@ void clipConvex(const Polygon2& subject, const Polygon2& clipper, Polygon2& out,
     const Eigen::Vector2d edge = clipper[(e + 1) % clipper.size()] - a;
     // side(p) >= 0: p is on the left of the edge, inside.
     auto side = [&](const Eigen::Vector2d& p) { return cross2(edge, p - a); };
+    // Most edges of a small clipper keep the whole subject (a floor triangle under a box):
+    // nothing to copy.
+    if (std::all_of(out.begin(), out.end(), [&](const Eigen::Vector2d& p) { return side(p) >= 0; })) continue;
     in.swap(out);
     out.clear();
     for (size_t i = 0; i < in.size(); ++i) {
@@ -93,7 +96,36 @@ double distanceToConvex(const Polygon2& convex, const Eigen::Vector2d& p) {
   return inside ? 0.0 : best;
 }
 
+namespace {
+
+// Drops the points strictly inside the quadrilateral of the leftmost, lowest, rightmost
+// and highest points: they cannot be hull corners (Akl and Toussaint's throw-away step).
+// Area contacts merged from many small pieces have most of their points inside.
+void dropInteriorPoints(std::vector<Eigen::Vector2d>& pts) {
+  if (pts.size() < 8) return;
+  auto lexLess = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  };
+  Eigen::Vector2d left = pts[0], right = pts[0], low = pts[0], high = pts[0];
+  for (const Eigen::Vector2d& p : pts) {
+    if (lexLess(p, left)) left = p;
+    if (lexLess(right, p)) right = p;
+    if (p.y() < low.y() || (p.y() == low.y() && p.x() > low.x())) low = p;
+    if (p.y() > high.y() || (p.y() == high.y() && p.x() < high.x())) high = p;
+  }
+  const std::array<Eigen::Vector2d, 4> quad{left, low, right, high};  // counter-clockwise
+  auto strictlyInside = [&](const Eigen::Vector2d& p) {
+    for (int i = 0; i < 4; ++i)
+      if (cross2(quad[(i + 1) % 4] - quad[i], p - quad[i]) <= 0) return false;
+    return true;
+  };
+  pts.erase(std::remove_if(pts.begin(), pts.end(), strictlyInside), pts.end());
+}
+
+}  // namespace
+
 Polygon2 convexHull(std::vector<Eigen::Vector2d> pts) {
+  dropInteriorPoints(pts);
   std::sort(pts.begin(), pts.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 namespace polysim::collision {
 namespace {
 
@@ -43,6 +46,42 @@ TEST(Clip, HullDropsInteriorAndCollinearPoints) {
   const Polygon2 hull = convexHull({V2(0, 0), V2(1, 0), V2(2, 0), V2(2, 2), V2(0, 2), V2(1, 1)});
   EXPECT_EQ(hull.size(), 4u);
   EXPECT_NEAR(signedArea(hull), 4.0, 1e-12);
+}
+
+// The hull of a point set without collinear corners is the counter-clockwise polygon of
+// input points, turning left at every corner, with every input point on or inside it.
+void expectIsHullOf(const Polygon2& hull, const std::vector<V2>& points) {
+  ASSERT_GE(hull.size(), 3u);
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const V2 &a = hull[i], &b = hull[(i + 1) % hull.size()], &c = hull[(i + 2) % hull.size()];
+    EXPECT_GT(cross2(b - a, c - b), 0.0) << "corner " << (i + 1) % hull.size();
+    EXPECT_NE(std::find(points.begin(), points.end(), a), points.end()) << "corner " << i << " is not an input";
+  }
+  for (const V2& p : points) EXPECT_LE(distanceToConvex(hull, p), 1e-12) << p.transpose();
+}
+
+TEST(Clip, HullOfALatticeIsItsFourCorners) {
+  // Ties in x and in y everywhere, as the corners of a triangulated floor's pieces.
+  std::vector<V2> lattice;
+  for (int i = 0; i <= 9; ++i)
+    for (int j = 0; j <= 6; ++j) lattice.emplace_back(0.1 * i, 0.2 * j);
+  const Polygon2 hull = convexHull(lattice);
+  EXPECT_EQ(hull.size(), 4u);
+  expectIsHullOf(hull, lattice);
+  EXPECT_NEAR(signedArea(hull), 0.9 * 1.2, 1e-12);
+}
+
+TEST(Clip, HullOfRandomCloudsHoldsEveryPoint) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  for (int cloud = 0; cloud < 200; ++cloud) {
+    std::vector<V2> points;
+    const int n = 3 + cloud % 60;
+    const V2 centre = cloud % 3 == 0 ? V2(0.0, 0.0) : V2(5.0, -2.0);
+    for (int i = 0; i < n; ++i) points.push_back(centre + V2(coordinate(rng), coordinate(rng)));
+    if (cloud % 2) points.push_back(points.front());  // a duplicate
+    expectIsHullOf(convexHull(points), points);
+  }
 }
 
 TEST(Clip, DistanceToConvexIsZeroInsideAndEuclideanOutside) {
