@@ -40,7 +40,7 @@ template <class Visit>
 void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
                           const Eigen::AlignedBox3d& region, double eps, DescentScratch& scratch, Visit&& visit);
 
-/// Every candidate pair once, in a deterministic order.
+/// Every candidate pair once, sorted by face of a, then face of b.
 void candidatePolygonPairs(const ObjNode& a, WorldFaces& facesA, const ObjNode& b, WorldFaces& facesB,
                            const Eigen::AlignedBox3d& region, double eps, DescentScratch& scratch,
                            std::vector<FacePair>& pairs);

@@ -27,9 +27,9 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   facesB.reset(B);
   ws.raw.clear();
   bool touching = false;
-  auto judge = [&](int fa, int fb, const AreaCover* cover = nullptr) {
+  auto judge = [&](int fa, int fb, const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr) {
     const PolygonPairOutcome o = testPolygonPair(facesA.view(fa), facesB.view(fb), eps,
-                                                 options.contacts ? &ws.raw : nullptr, ws.scratch, cover);
+                                                 options.contacts ? &ws.raw : nullptr, ws.scratch, cover, patch);
     if (o.status == Status::Interpenetrating) {
       result.status = Status::Interpenetrating;
       result.depth = std::max(result.depth, o.depth);
@@ -55,8 +55,17 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
     auto facing = [&](const FacePair& fp) {
       return facesA.plane(fp.a).normal.dot(facesB.plane(fp.b).normal) <= facingCosine;
     };
-    for (const FacePair& fp : ws.candidates)
-      if (facing(fp)) judge(fp.a, fp.b);
+    // The candidates come sorted by A's face: each face's facing pairs form one patch.
+    for (size_t i = 0, end = 0; i < ws.candidates.size(); i = end) {
+      const int fa = ws.candidates[i].a;
+      bool begun = false;
+      for (end = i; end < ws.candidates.size() && ws.candidates[end].a == fa; ++end) {
+        if (!facing(ws.candidates[end])) continue;
+        if (!begun) ws.patch.begin(facesA.view(fa)), begun = true;
+        judge(fa, ws.candidates[end].b, nullptr, &ws.patch);
+      }
+      if (begun) ws.patch.finish(ws.raw);
+    }
     ws.cover.seal();
     for (const FacePair& fp : ws.candidates)
       if (!facing(fp)) judge(fp.a, fp.b, &ws.cover);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "collision/area_cover.h"
+#include "collision/area_on_patch.h"
 #include "collision/broadphase.h"
 #include "collision/contact.h"
 #include "collision/object.h"
@@ -40,6 +41,7 @@ struct IntersectionWorkspace {
   std::vector<Contact> raw;
   PolygonScratch scratch;
   AreaCover cover;
+  AreaOnPatch patch;
 };
 
 /// Tests every pair of objects of the database at their current transforms (static pairs

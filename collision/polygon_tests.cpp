@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "collision/area_cover.h"
+#include "collision/area_on_patch.h"
 #include "collision/segment_distance.h"
 #include "collision/tolerances.h"
 
@@ -282,7 +283,8 @@ double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, 
 }
 
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
-                                   std::vector<Contact>* contacts, PolygonScratch& s, const AreaCover* cover) {
+                                   std::vector<Contact>* contacts, PolygonScratch& s, const AreaCover* cover,
+                                   AreaOnPatch* patch) {
   signedDistances(p, q.plane, s.dP);
   signedDistances(q, p.plane, s.dQ);
   if (outOfReach(s.dP, s.dQ, eps)) return {};
@@ -299,13 +301,18 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   std::vector<Contact>& out = contacts ? *contacts : s.discard;
   const size_t before = out.size();
   const bool facing = p.plane.normal.dot(q.plane.normal) <= -std::cos(kFaceContactAngle);
-  const bool area = facing && areaContact(p, q, eps, out, s);
+  bool area = false;
+  if (facing) {
+    const AreaOnPatch::Outcome onPatch = patch ? patch->add(q, eps) : AreaOnPatch::Outcome::OffPatch;
+    area = onPatch == AreaOnPatch::Outcome::Area ||
+           (onPatch == AreaOnPatch::Outcome::OffPatch && areaContact(p, q, eps, out, s));
+  }
   if (!area) {
     featuresOnFace(p, s.dP.data(), q, eps, true, out, s);
     featuresOnFace(q, s.dQ.data(), p, eps, false, out, s);
     edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out);
   }
-  const bool touching = out.size() > before;
+  const bool touching = area || out.size() > before;
   if (!contacts) s.discard.clear();
   return {touching ? Status::Contact : Status::Separate, 0.0, area};
 }

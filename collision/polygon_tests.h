@@ -42,6 +42,7 @@ struct PolygonPairOutcome {
 };
 
 class AreaCover;
+class AreaOnPatch;
 
 /// Tests polygon p (of object A) against q (of object B) with contact tolerance eps (m).
 ///
@@ -53,10 +54,12 @@ class AreaCover;
 /// (area, lines, points; normal from B towards A) are appended, possibly with
 /// duplicates that the caller merges (see contact_reduction.h). When `cover` says an
 /// area contact already found holds whatever the pair would add, nothing is appended
-/// and the pair counts as in contact.
+/// and the pair counts as in contact. When `patch` is given (begun on p, and `contacts`
+/// non-null), a face-on-face area of p and q joins the patch instead of being appended
+/// (area_on_patch.h).
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& scratch,
-                                   const AreaCover* cover = nullptr);
+                                   const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr);
 
 /// How far (m) p goes inside q's object or q inside p's, measured as in testPolygonPair
 /// (0 when neither goes behind the other); not compared with any tolerance.

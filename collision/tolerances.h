@@ -44,6 +44,12 @@ inline constexpr double kFlatEdgeAngle = 1e-4;
 /// tilt by the whole default tolerance.
 inline constexpr double kFaceContactAngle = 1e-2;
 
+/// Fraction of a face's area by which the area pieces found under it (one per face of a
+/// flat patch, area_on_patch.h) may fall short of it and still cover it: round-off of
+/// clipping the face into pieces, far below a missing strip of any width that matters.
+/// A real shortfall (the face overhangs the patch) leaves the pieces to be merged exactly.
+inline constexpr double kCoverRoundOff = 1e-9;
+
 /// How far (rad) a contact normal may lie outside a feature's normal cone (the face's
 /// normal; the wedge between an edge's faces; the cone among a vertex's faces) and still
 /// count as a way to touch that feature. Covers round-off and the tilts the contact band

@@ -1,0 +1,89 @@
+#include "collision/area_on_patch.h"
+
+#include <cmath>
+
+#include "collision/tolerances.h"
+
+namespace polysim::collision {
+
+void AreaOnPatch::begin(const PolygonView& p) {
+  p_ = p;
+  started_ = false;
+  corners_.clear();
+  pieceEnd_.clear();
+  pieceArea_.clear();
+  pieceGap_.clear();
+  firstFace_ = -1;
+}
+
+Eigen::Vector3d AreaOnPatch::contactCorner(const Eigen::Vector2d& x, double& gap) const {
+  const Eigen::Vector3d onPatch = frame_.to3d(x);
+  gap = p_.plane.signedDistance(onPatch) / along_;
+  return onPatch + (0.5 * gap) * frame_.normal;
+}
+
+AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
+  if (!started_) {
+    frame_ = PlaneFrame(q.vertices[0], q.plane.normal);
+    along_ = -p_.plane.normal.dot(q.plane.normal);
+    p2_.resize(p_.size);
+    for (int k = 0; k < p_.size; ++k) p2_[p_.size - 1 - k] = frame_.to2d(p_.vertices[k]);  // reversed: CCW about the patch normal
+    started_ = true;
+  } else if (q.plane.normal.dot(frame_.normal) < std::cos(kFlatEdgeAngle)) {
+    return Outcome::OffPatch;
+  }
+  q2_.resize(q.size);
+  for (int k = 0; k < q.size; ++k) {
+    if (std::abs(frame_.normal.dot(q.vertices[k] - frame_.origin)) > kPlanarityTolerance) return Outcome::OffPatch;
+    q2_[k] = frame_.to2d(q.vertices[k]);
+  }
+  clipConvex(q2_, p2_, piece_, work_);
+  if (piece_.size() < 3) return Outcome::NotArea;
+  const double area = signedArea(piece_);
+  if (area <= 0.5 * eps * perimeter(piece_)) return Outcome::NotArea;
+  double gapSum = 0.0;
+  for (const Eigen::Vector2d& x : piece_) {
+    double gap = 0.0;
+    contactCorner(x, gap);
+    if (std::abs(gap) > eps) return Outcome::NotArea;
+    gapSum += gap;
+  }
+  if (firstFace_ < 0) firstFace_ = q.faceId;
+  corners_.insert(corners_.end(), piece_.begin(), piece_.end());
+  pieceEnd_.push_back(static_cast<int>(corners_.size()));
+  pieceArea_.push_back(area);
+  pieceGap_.push_back(gapSum / static_cast<double>(piece_.size()));
+  return Outcome::Area;
+}
+
+void AreaOnPatch::finish(std::vector<Contact>& out) const {
+  if (pieceEnd_.empty()) return;
+  double areaSum = 0.0, weightedGap = 0.0;
+  for (size_t i = 0; i < pieceArea_.size(); ++i) areaSum += pieceArea_[i], weightedGap += pieceArea_[i] * pieceGap_[i];
+  auto emit = [&](const Eigen::Vector2d* first, const Eigen::Vector2d* last, double separation) {
+    Contact c;
+    c.type = ContactType::Area;
+    c.normal = frame_.normal;
+    c.separation = separation;
+    c.featureA = {Feature::Kind::Face, p_.faceId};
+    c.featureB = {Feature::Kind::Face, firstFace_};
+    c.points.reserve(static_cast<size_t>(last - first));
+    double gap = 0.0;
+    for (const Eigen::Vector2d* x = first; x != last; ++x) c.points.push_back(contactCorner(*x, gap));
+    out.push_back(std::move(c));
+  };
+  // The pieces are disjoint parts of p (faces of one mesh do not overlap), so they cover
+  // p exactly when their areas add up to p's; each corner of p is then a corner of some
+  // piece, already checked to lie within the band.
+  if (areaSum >= (1.0 - kCoverRoundOff) * signedArea(p2_)) {
+    emit(p2_.data(), p2_.data() + p2_.size(), weightedGap / areaSum);
+    return;
+  }
+  int begin = 0;
+  for (size_t i = 0; i < pieceEnd_.size(); ++i) {
+    emit(corners_.data() + begin, corners_.data() + pieceEnd_[i], pieceGap_[i]);
+    begin = pieceEnd_[i];
+  }
+}
+
+}  // namespace polysim::collision
