@@ -28,6 +28,7 @@ AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
     along_ = -p_.plane.normal.dot(q.plane.normal);
     p2_.resize(p_.size);
     for (int k = 0; k < p_.size; ++k) p2_[p_.size - 1 - k] = frame_.to2d(p_.vertices[k]);  // reversed: CCW about the patch normal
+    perimeterP_ = perimeter(p2_);
     started_ = true;
   } else if (q.plane.normal.dot(frame_.normal) < std::cos(kFlatEdgeAngle)) {
     return Outcome::OffPatch;
@@ -39,8 +40,10 @@ AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
   }
   clipConvex(q2_, p2_, piece_, work_);
   if (piece_.size() < 3) return Outcome::NotArea;
+  // A piece is a convex part of p, so its perimeter is at most p's: most pieces are
+  // judged without measuring their own.
   const double area = signedArea(piece_);
-  if (area <= 0.5 * eps * perimeter(piece_)) return Outcome::NotArea;
+  if (area <= 0.5 * eps * perimeterP_ && area <= 0.5 * eps * perimeter(piece_)) return Outcome::NotArea;
   double gapSum = 0.0;
   for (const Eigen::Vector2d& x : piece_) {
     double gap = 0.0;

@@ -45,6 +45,7 @@ class AreaOnPatch {
   bool started_ = false;
   double along_ = 1.0;                   // -p.normal . patch normal: gap along the patch normal per unit distance along p's
   Polygon2 p2_;                          // p seen on the patch, counter-clockwise about the patch normal
+  double perimeterP_ = 0.0;              // of p2_
   Polygon2 q2_, piece_, work_;           // scratch
   std::vector<Eigen::Vector2d> corners_;  // every piece's corners, piece after piece
   std::vector<int> pieceEnd_;             // one past each piece's last corner

@@ -76,12 +76,26 @@ double maxOfMinOfLines(const std::vector<std::pair<double, double>>& lines) {
 // depth of p behind q's plane within q's prism (grown by eps) and the depth of p's cut
 // through q's plane inside q, measured from q's edges that are not flat. A caller that
 // only asks whether the depth exceeds `enough` gets the cut's depth alone once that is
-// at most `enough` (the smaller of the two can only be less).
+// at most `enough` (the smaller of the two can only be less), or a bound on it.
 double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, double eps, PolygonScratch& s,
                  double enough = -1.0) {
   const double maxP = *std::max_element(dP, dP + p.size);
   Eigen::Vector3d c0, c1;
   if (!cutAtLevel(p, dP, std::min(0.0, maxP), c0, c1)) return 0.0;
+  if (enough >= 0.0) {
+    // The usual case is a face's edge resting on the other face (a box's side on a floor
+    // triangle): the cut runs just inside one sharp edge. The inside distance from an
+    // edge is linear along the cut, so the cut's depth is at most, for any sharp edge, the
+    // deeper of the cut's two ends; that settles the case without projecting onto q.
+    double bound = kInfinity;
+    for (int k = 0; k < q.size; ++k) {
+      if (q.edgeFlat[k]) continue;
+      const Eigen::Vector3d& u = q.vertices[k];
+      const Eigen::Vector3d outward = (q.vertices[(k + 1) % q.size] - u).cross(q.plane.normal).normalized();
+      bound = std::min(bound, std::max(outward.dot(u - c0), outward.dot(u - c1)));
+    }
+    if (bound <= enough) return bound;
+  }
 
   const PlaneFrame frame(q.vertices[0], q.plane.normal);
   s.q2.resize(q.size);
