@@ -13,6 +13,7 @@ void AreaOnPatch::begin(const PolygonView& p) {
   pieceEnd_.clear();
   pieceArea_.clear();
   pieceGap_.clear();
+  unsettled_.clear();
   firstFace_ = -1;
 }
 
@@ -38,29 +39,37 @@ AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
     if (std::abs(frame_.normal.dot(q.vertices[k] - frame_.origin)) > kPlanarityTolerance) return Outcome::OffPatch;
     q2_[k] = frame_.to2d(q.vertices[k]);
   }
-  clipConvex(q2_, p2_, piece_, work_);
-  if (piece_.size() < 3) return Outcome::NotArea;
-  // A piece is a convex part of p, so its perimeter is at most p's: most pieces are
-  // judged without measuring their own.
-  const double area = signedArea(piece_);
-  if (area <= 0.5 * eps * perimeterP_ && area <= 0.5 * eps * perimeter(piece_)) return Outcome::NotArea;
-  double gapSum = 0.0;
-  for (const Eigen::Vector2d& x : piece_) {
-    double gap = 0.0;
-    contactCorner(x, gap);
-    if (std::abs(gap) > eps) return Outcome::NotArea;
-    gapSum += gap;
+  if (!isArea(eps)) {
+    unsettled_.push_back(q.faceId);
+    return Outcome::Unsettled;
   }
   if (firstFace_ < 0) firstFace_ = q.faceId;
   corners_.insert(corners_.end(), piece_.begin(), piece_.end());
   pieceEnd_.push_back(static_cast<int>(corners_.size()));
-  pieceArea_.push_back(area);
-  pieceGap_.push_back(gapSum / static_cast<double>(piece_.size()));
   return Outcome::Area;
 }
 
-void AreaOnPatch::finish(std::vector<Contact>& out) const {
-  if (pieceEnd_.empty()) return;
+bool AreaOnPatch::isArea(double eps) {
+  clipConvex(q2_, p2_, piece_, work_);
+  if (piece_.size() < 3) return false;
+  // A piece is a convex part of p, so its perimeter is at most p's: most pieces are
+  // judged without measuring their own.
+  const double area = signedArea(piece_);
+  if (area <= 0.5 * eps * perimeterP_ && area <= 0.5 * eps * perimeter(piece_)) return false;
+  double gapSum = 0.0;
+  for (const Eigen::Vector2d& x : piece_) {
+    double gap = 0.0;
+    contactCorner(x, gap);
+    if (std::abs(gap) > eps) return false;
+    gapSum += gap;
+  }
+  pieceArea_.push_back(area);
+  pieceGap_.push_back(gapSum / static_cast<double>(piece_.size()));
+  return true;
+}
+
+bool AreaOnPatch::finish(std::vector<Contact>& out) const {
+  if (pieceEnd_.empty()) return false;
   double areaSum = 0.0, weightedGap = 0.0;
   for (size_t i = 0; i < pieceArea_.size(); ++i) areaSum += pieceArea_[i], weightedGap += pieceArea_[i] * pieceGap_[i];
   auto emit = [&](const Eigen::Vector2d* first, const Eigen::Vector2d* last, double separation) {
@@ -80,13 +89,14 @@ void AreaOnPatch::finish(std::vector<Contact>& out) const {
   // piece, already checked to lie within the band.
   if (areaSum >= (1.0 - kCoverRoundOff) * signedArea(p2_)) {
     emit(p2_.data(), p2_.data() + p2_.size(), weightedGap / areaSum);
-    return;
+    return true;
   }
   int begin = 0;
   for (size_t i = 0; i < pieceEnd_.size(); ++i) {
     emit(corners_.data() + begin, corners_.data() + pieceEnd_[i], pieceGap_[i]);
     begin = pieceEnd_[i];
   }
+  return false;
 }
 
 }  // namespace polysim::collision

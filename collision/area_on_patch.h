@@ -19,26 +19,33 @@ class AreaOnPatch {
   void begin(const PolygonView& p);
 
   enum class Outcome {
-    Area,        // q's overlap with p is a real area within the band: kept as a piece
-    NotArea,     // p and q are not face on face where they overlap (too thin, or out of the band)
-    OffPatch,    // q is not coplanar with the patch's first face: test it on its own
+    Area,       // q's overlap with p is a real area within the band: kept as a piece
+    Unsettled,  // no area of its own (too thin, or out of the band): see finish()
+    OffPatch,   // q is not coplanar with the patch's first face: test it on its own
   };
-  /// Adds face q of B, facing p. The patch's plane is the first added face's; q joins when its normal is
-  /// within kFlatEdgeAngle of it and its vertices within kPlanarityTolerance (m) of it.
-  /// Area follows areaContact's rule (polygon_tests.h): the overlap, seen along the
-  /// patch's normal, is wider than eps/2 and has every corner within eps (m) of p's plane.
+  /// Adds face q of B, facing p. The patch's plane is the first added face's; q joins
+  /// when its normal is within kFlatEdgeAngle of it and its vertices within
+  /// kPlanarityTolerance (m) of it. Area follows areaContact's rule (polygon_tests.h):
+  /// the overlap, seen along the patch's normal, is wider than eps/2 and has every
+  /// corner within eps (m) of p's plane.
   Outcome add(const PolygonView& q, double eps);
 
-  /// Appends the patch's area contacts (normal from B towards A): one polygon, p seen on
-  /// the patch, when the pieces cover p (up to kCoverRoundOff of its area); otherwise
-  /// every piece, for the reduction to merge. Separation is the pieces' mean gap
-  /// weighted by area.
-  void finish(std::vector<Contact>& out) const;
+  /// Appends the patch's area contacts (normal from B towards A) and returns whether the
+  /// pieces cover p (up to kCoverRoundOff of its area). Covered, the contact is p itself
+  /// seen on the patch, and whatever the Unsettled faces have within eps of p lies on it:
+  /// they add nothing. Otherwise every piece is appended, for the reduction to merge,
+  /// and the Unsettled faces must be tested on their own. Separation is the pieces' mean
+  /// gap weighted by area.
+  bool finish(std::vector<Contact>& out) const;
+  /// The faces that add() found Unsettled, in the order added.
+  const std::vector<int>& unsettled() const { return unsettled_; }
 
  private:
   // Where x (2D, patch frame) meets the plane of a face within kPlanarityTolerance of the
   // patch, moved halfway to p's plane: a corner of the contact polygon.
   Eigen::Vector3d contactCorner(const Eigen::Vector2d& x, double& gap) const;
+  // Clips q2_ to p2_ into piece_; when the piece is an area, records its area and gap.
+  bool isArea(double eps);
 
   PolygonView p_;
   PlaneFrame frame_{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ()};
@@ -50,6 +57,7 @@ class AreaOnPatch {
   std::vector<Eigen::Vector2d> corners_;  // every piece's corners, piece after piece
   std::vector<int> pieceEnd_;             // one past each piece's last corner
   std::vector<double> pieceArea_, pieceGap_;
+  std::vector<int> unsettled_;
   int firstFace_ = -1;
 };
 

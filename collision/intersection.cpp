@@ -64,7 +64,17 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
         if (!begun) ws.patch.begin(facesA.view(fa)), begun = true;
         judge(fa, ws.candidates[end].b, nullptr, &ws.patch);
       }
-      if (begun) ws.patch.finish(ws.raw);
+      if (!begun) continue;
+      const bool covered = ws.patch.finish(ws.raw);
+      for (const int fb : ws.patch.unsettled()) {
+        if (!covered) {
+          judge(fa, fb);
+          continue;
+        }
+        // What fb has near fa lies on fa's area, as does what fa's side faces have near fb.
+        touching = true;
+        ws.cover.addArea(fa, fb);
+      }
     }
     ws.cover.seal();
     for (const FacePair& fp : ws.candidates)

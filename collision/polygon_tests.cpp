@@ -318,6 +318,7 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   bool area = false;
   if (facing) {
     const AreaOnPatch::Outcome onPatch = patch ? patch->add(q, eps) : AreaOnPatch::Outcome::OffPatch;
+    if (onPatch == AreaOnPatch::Outcome::Unsettled) return {Status::Separate, 0.0, false, true};
     area = onPatch == AreaOnPatch::Outcome::Area ||
            (onPatch == AreaOnPatch::Outcome::OffPatch && areaContact(p, q, eps, out, s));
   }

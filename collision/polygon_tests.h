@@ -39,6 +39,8 @@ struct PolygonPairOutcome {
   double depth = 0.0;
   /// For Contact, the pair is face on face (its contact is an area).
   bool area = false;
+  /// The pair waits for its patch to be finished (area_on_patch.h); status says nothing yet.
+  bool unsettled = false;
 };
 
 class AreaCover;
@@ -55,8 +57,8 @@ class AreaOnPatch;
 /// duplicates that the caller merges (see contact_reduction.h). When `cover` says an
 /// area contact already found holds whatever the pair would add, nothing is appended
 /// and the pair counts as in contact. When `patch` is given (begun on p, and `contacts`
-/// non-null), a face-on-face area of p and q joins the patch instead of being appended
-/// (area_on_patch.h).
+/// non-null), a facing pair that is not interpenetrating goes to the patch instead: its
+/// area joins the patch's pieces, or it is left unsettled (area_on_patch.h).
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& scratch,
                                    const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr);
