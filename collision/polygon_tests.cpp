@@ -91,8 +91,7 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
     for (int k = 0; k < q.size; ++k) {
       if (q.edgeFlat[k]) continue;
       const Eigen::Vector3d& u = q.vertices[k];
-      const Eigen::Vector3d outward = (q.vertices[(k + 1) % q.size] - u).cross(q.plane.normal).normalized();
-      bound = std::min(bound, std::max(outward.dot(u - c0), outward.dot(u - c1)));
+      bound = std::min(bound, std::max(q.sideNormal[k].dot(u - c0), q.sideNormal[k].dot(u - c1)));
     }
     if (bound <= enough) return bound;
   }
@@ -120,9 +119,8 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
   clipBelow(s.clipA, q.plane.normal, q.plane.offset, s.clipB);
   for (int k = 0; k < q.size && !s.clipB.empty(); ++k) {
     const Eigen::Vector3d& u = q.vertices[k];
-    const Eigen::Vector3d outward = (q.vertices[(k + 1) % q.size] - u).cross(q.plane.normal).normalized();
     s.clipA.swap(s.clipB);
-    clipBelow(s.clipA, outward, outward.dot(u) + eps, s.clipB);
+    clipBelow(s.clipA, q.sideNormal[k], q.sideNormal[k].dot(u) + eps, s.clipB);
   }
   double behind = 0.0;
   for (const Eigen::Vector3d& x : s.clipB) behind = std::max(behind, -q.plane.signedDistance(x));

@@ -14,6 +14,7 @@ namespace polysim::collision {
 struct PolygonView {
   const Eigen::Vector3d* vertices = nullptr;     // world, counter-clockwise about plane.normal
   const Eigen::Vector3d* edgeOutward = nullptr;  // world; edge i runs from vertex i to i+1
+  const Eigen::Vector3d* sideNormal = nullptr;   // world, unit, in the plane, out of the polygon across side i
   const int* vertexIds = nullptr;                // mesh vertex of each corner
   const int* edgeIds = nullptr;                  // mesh edge of each side
   const char* edgeFlat = nullptr;                // side i is a flat internal edge (no boundary)

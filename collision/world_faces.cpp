@@ -21,6 +21,7 @@ void WorldFaces::reset(const ObjNode& object) {
   ++query_;
   vertices_.clear();
   outward_.clear();
+  sideNormals_.clear();
   flat_.clear();
   vertexIds_.clear();
   edgeIds_.clear();
@@ -47,6 +48,11 @@ const WorldFaces::Entry& WorldFaces::entry(int f) {
   const Plane& local = mesh.facePlane(f);
   e.plane.normal = X.linear() * local.normal;
   e.plane.offset = local.offset + e.plane.normal.dot(X.translation());
+  const int n = mesh.faceSize(f);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d side = vertices_[e.first + (i + 1) % n] - vertices_[e.first + i];
+    sideNormals_.push_back(side.cross(e.plane.normal).normalized());
+  }
   return e;
 }
 
@@ -55,6 +61,7 @@ PolygonView WorldFaces::view(int f) {
   PolygonView v;
   v.vertices = vertices_.data() + e.first;
   v.edgeOutward = outward_.data() + e.first;
+  v.sideNormal = sideNormals_.data() + e.first;
   v.vertexIds = vertexIds_.data() + e.first;
   v.edgeIds = edgeIds_.data() + e.first;
   v.edgeFlat = flat_.data() + e.first;

@@ -39,7 +39,7 @@ class WorldFaces {
   std::uint32_t query_ = 0;
   std::vector<std::uint32_t> stamp_;
   std::vector<Entry> entries_;
-  std::vector<Eigen::Vector3d> vertices_, outward_;
+  std::vector<Eigen::Vector3d> vertices_, outward_, sideNormals_;
   std::vector<char> flat_;
   std::vector<int> vertexIds_, edgeIds_;
 };
