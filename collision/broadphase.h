@@ -30,6 +30,7 @@ struct FacePair {
 struct DescentScratch {
   std::vector<std::pair<VoxelCell, VoxelCell>> stack;
   std::vector<int> nearA, nearB;
+  std::vector<Eigen::AlignedBox3d> boxesB;  // of nearB's faces
 };
 
 /// Calls visit(fa, fb) for every pair of faces whose world boxes, grown by eps, overlap

@@ -40,7 +40,7 @@ void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b
     return !box.isEmpty() && box.intersects(r);
   };
 
-  auto& [stack, nearA, nearB] = scratch;
+  auto& [stack, nearA, nearB, boxesB] = scratch;
   stack.clear();
   if (inRegion(gridA, {}, regionA) && inRegion(gridB, {}, regionB)) stack.push_back({VoxelCell{}, VoxelCell{}});
   // A pair of cells is kept while both hold faces inside the overlap region and their
@@ -59,16 +59,21 @@ void forEachCandidatePair(const ObjNode& a, WorldFaces& facesA, const ObjNode& b
       // them lie away from the other leaf.
       const Eigen::AlignedBox3d reachA = grow(transformBox(a.X_WO, boxA), eps).intersection(region);
       const Eigen::AlignedBox3d reachB = grow(transformBox(b.X_WO, boxB), eps).intersection(region);
+      // The boxes are copied side by side: the pair loop then reads them in order.
       nearA.clear();
       nearB.clear();
+      boxesB.clear();
       for (const int* fa = gridA.facesBegin(cellA); fa != gridA.facesEnd(cellA); ++fa)
         if (grow(facesA.box(*fa), eps).intersects(reachB)) nearA.push_back(*fa);
       for (const int* fb = gridB.facesBegin(cellB); fb != gridB.facesEnd(cellB); ++fb)
-        if (facesB.box(*fb).intersects(reachA)) nearB.push_back(*fb);
+        if (const Eigen::AlignedBox3d& box = facesB.box(*fb); box.intersects(reachA)) {
+          nearB.push_back(*fb);
+          boxesB.push_back(box);
+        }
       for (const int fa : nearA) {
         const Eigen::AlignedBox3d boxFa = grow(facesA.box(fa), eps);
-        for (const int fb : nearB)
-          if (boxFa.intersects(facesB.box(fb)) && !visit(fa, fb)) return;
+        for (size_t k = 0; k < nearB.size(); ++k)
+          if (boxFa.intersects(boxesB[k]) && !visit(fa, nearB[k])) return;
       }
       continue;
     }
