@@ -274,23 +274,28 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
   }
 }
 
-// A polygon wholly beyond the band on one side of the other's plane cannot come within
-// eps of it; whether it lies inside the other object is for other polygon pairs to see.
-bool outOfReach(const std::vector<double>& dP, const std::vector<double>& dQ, double eps) {
-  const auto [minP, maxP] = std::minmax_element(dP.begin(), dP.end());
-  const auto [minQ, maxQ] = std::minmax_element(dQ.begin(), dQ.end());
-  return *minP > eps || *maxP < -eps || *minQ > eps || *maxQ < -eps;
-}
+// The lowest and highest of a polygon's vertex levels over the other's plane.
+struct LevelRange {
+  double min, max;
+  explicit LevelRange(const std::vector<double>& d) {
+    const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+    min = *lo, max = *hi;
+  }
+  // Wholly beyond the band on one side of the plane: cannot come within eps of the other
+  // polygon; whether it lies inside the other object is for other polygon pairs to see.
+  bool outOfReach(double eps) const { return min > eps || max < -eps; }
+};
 
 }  // namespace
 
 double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, PolygonScratch& s) {
   signedDistances(p, q.plane, s.dP);
   signedDistances(q, p.plane, s.dQ);
-  if (outOfReach(s.dP, s.dQ, eps)) return 0.0;
+  const LevelRange levelP(s.dP), levelQ(s.dQ);
+  if (levelP.outOfReach(eps) || levelQ.outOfReach(eps)) return 0.0;
   double depth = 0.0;
-  if (*std::min_element(s.dP.begin(), s.dP.end()) < 0) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));
-  if (*std::min_element(s.dQ.begin(), s.dQ.end()) < 0) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
+  if (levelP.min < 0) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));
+  if (levelQ.min < 0) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
   return depth;
 }
 
@@ -299,14 +304,13 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
                                    AreaOnPatch* patch) {
   signedDistances(p, q.plane, s.dP);
   signedDistances(q, p.plane, s.dQ);
-  if (outOfReach(s.dP, s.dQ, eps)) return {};
-  const auto [minP, maxP] = std::minmax_element(s.dP.begin(), s.dP.end());
-  const auto [minQ, maxQ] = std::minmax_element(s.dQ.begin(), s.dQ.end());
+  const LevelRange levelP(s.dP), levelQ(s.dQ);
+  if (levelP.outOfReach(eps) || levelQ.outOfReach(eps)) return {};
 
   double depth = 0.0;
   // Only whether the depth exceeds eps matters here.
-  if (*minP < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
-  if (*minQ < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
+  if (levelP.min < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
+  if (levelQ.min < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
   if (depth > eps) return {Status::Interpenetrating, depth};
   if (cover && cover->covers(p, s.dP.data(), q, s.dQ.data(), eps)) return {Status::Contact, 0.0};
 

@@ -93,6 +93,15 @@ std::vector<Case> cases() {
       // A triangulated floor whose grid lines run along the box's sides: one square.
       {"box_on_triangulated_floor", kUnitBox, makeTriangulatedFloor(10, 10, 10), pose(V3(0, 0, 0.5)),
        pose(V3::Zero()), true, Status::Contact, {{ContactType::Area, V3(0, 0, 1), 1.0, V3(0, 0, 0)}}},
+      // Grid lines cross the box's sides mid-cell and the triangles' diagonals run through
+      // two of its corners: triangles that only touch the face add nothing (area_on_patch.h).
+      {"corners_on_triangle_diagonals", kUnitBox, makeTriangulatedFloor(10, 10, 50),
+       pose(V3(0.05, 0.05, 0.5 - kEps / 2)), pose(V3::Zero()), true, Status::Contact,
+       {{ContactType::Area, V3(0, 0, 1), 1.0, V3(0.05, 0.05, -kEps / 4)}}},
+      // A quarter of the box hangs over the floor's edge at x = 3: the pieces do not cover
+      // the face, and the reduction merges them into the overlap.
+      {"overhanging_triangulated_floor", kUnitBox, makeTriangulatedFloor(6, 6, 12), pose(V3(2.75, 0, 0.5)),
+       pose(V3::Zero()), true, Status::Contact, {{ContactType::Area, V3(0, 0, 1), 0.75, V3(2.625, 0, 0)}}},
       {"edge_along_triangle_edges", kUnitBox, makeTriangulatedFloor(10, 10, 10),
        pose(V3(0.5, 0, r2 / 2), rot(M_PI / 4, V3::UnitX())), pose(V3::Zero()), true, Status::Contact,
        {{ContactType::Line, V3(0, 0, 1), 1.0, V3(0.5, 0, 0)}}},
