@@ -82,6 +82,20 @@ bool clipSegment(const Polygon2& convex, double grow, Eigen::Vector2d& a, Eigen:
   return true;
 }
 
+Eigen::Vector2d nearestPointToConvex(const Polygon2& convex, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  Eigen::Vector2d best = a;
+  double bestDistance = distanceToConvex(convex, a);
+  auto consider = [&](const Eigen::Vector2d& x) {
+    const double d = distanceToConvex(convex, x);
+    if (d < bestDistance) best = x, bestDistance = d;
+  };
+  consider(b);
+  const Eigen::Vector2d ab = b - a;
+  if (ab.squaredNorm() > 0)
+    for (const Eigen::Vector2d& corner : convex) consider(a + std::clamp(ab.dot(corner - a) / ab.squaredNorm(), 0.0, 1.0) * ab);
+  return best;
+}
+
 double distanceToConvex(const Polygon2& convex, const Eigen::Vector2d& p) {
   bool inside = true;
   double best = std::numeric_limits<double>::infinity();

@@ -39,6 +39,11 @@ bool clipSegment(const Polygon2& convex, double grow, Eigen::Vector2d& a, Eigen:
 /// Distance from p to a convex counter-clockwise polygon: 0 inside, else to the boundary.
 double distanceToConvex(const Polygon2& convex, const Eigen::Vector2d& p);
 
+/// The point of segment [a, b] nearest to a convex counter-clockwise polygon (exact when
+/// the segment does not cross it: the nearest pair then has an end of the segment or a
+/// corner of the polygon in it).
+Eigen::Vector2d nearestPointToConvex(const Polygon2& convex, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
 /// The convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
 Polygon2 convexHull(std::vector<Eigen::Vector2d> points);
 

@@ -204,13 +204,19 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
           s.onLine[j] = b0 == vj;
           a = a0, b = b0;
         }
-        const double gap = 0.5 * (dP[i] + dP[j]);
-        const Eigen::Vector3d shift = (0.5 * gap) * q.plane.normal;
-        const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
-        Contact c = makeContact(isLine ? ContactType::Line : ContactType::Point, normal, gap, fa, fb);
-        if (isLine) c.points = {frame.to3d(a) + shift, frame.to3d(b) + shift};
-        else c.points = {frame.to3d(0.5 * (a + b)) + shift};
-        out.push_back(std::move(c));
+        // The grown clip overshoots q's sharp corners (by eps over the sine of half the
+        // corner's angle): there the edge touches q only where it truly comes within eps.
+        Eigen::Vector2d at = 0.5 * (a + b);
+        if (!isLine && distanceToConvex(s.q2, at) > eps) at = nearestPointToConvex(s.q2, a, b);
+        if (isLine || distanceToConvex(s.q2, at) <= eps) {
+          const double gap = 0.5 * (dP[i] + dP[j]);
+          const Eigen::Vector3d shift = (0.5 * gap) * q.plane.normal;
+          const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
+          Contact c = makeContact(isLine ? ContactType::Line : ContactType::Point, normal, gap, fa, fb);
+          if (isLine) c.points = {frame.to3d(a) + shift, frame.to3d(b) + shift};
+          else c.points = {frame.to3d(at) + shift};
+          out.push_back(std::move(c));
+        }
       }
     }
     if (!s.onLine[i] && distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {

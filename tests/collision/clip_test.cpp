@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace polysim::collision {
@@ -87,6 +88,15 @@ TEST(Clip, HullOfRandomCloudsHoldsEveryPoint) {
 TEST(Clip, DistanceToConvexIsZeroInsideAndEuclideanOutside) {
   EXPECT_EQ(distanceToConvex(square(1.0), V2(0.5, 0.5)), 0.0);
   EXPECT_NEAR(distanceToConvex(square(1.0), V2(4, 5)), 5.0, 1e-12);
+}
+
+// Square [-1, 1]^2. The line x + y = 3 passes its corner (1, 1) nearest at (1.5, 1.5),
+// sqrt(0.5) away, with neither end near; a segment pointing away is nearest at its end.
+TEST(Clip, NearestPointOfASegmentToAConvexPolygon) {
+  const V2 nearCorner = nearestPointToConvex(square(1.0), V2(3, 0), V2(0, 3));
+  EXPECT_NEAR((nearCorner - V2(1.5, 1.5)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(distanceToConvex(square(1.0), nearCorner), std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR((nearestPointToConvex(square(1.0), V2(5, 0.5), V2(2, 0.5)) - V2(2, 0.5)).norm(), 0.0, 1e-12);
 }
 
 }  // namespace
