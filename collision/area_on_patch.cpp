@@ -39,22 +39,25 @@ AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
     if (std::abs(frame_.normal.dot(q.vertices[k] - frame_.origin)) > kPlanarityTolerance) return Outcome::OffPatch;
     q2_[k] = frame_.to2d(q.vertices[k]);
   }
-  if (!isArea(eps)) {
+  double area = 0.0, gap = 0.0;
+  if (!isArea(eps, area, gap)) {
     unsettled_.push_back(q.faceId);
     return Outcome::Unsettled;
   }
   if (firstFace_ < 0) firstFace_ = q.faceId;
   corners_.insert(corners_.end(), piece_.begin(), piece_.end());
   pieceEnd_.push_back(static_cast<int>(corners_.size()));
+  pieceArea_.push_back(area);
+  pieceGap_.push_back(gap);
   return Outcome::Area;
 }
 
-bool AreaOnPatch::isArea(double eps) {
+bool AreaOnPatch::isArea(double eps, double& area, double& meanGap) {
   clipConvex(q2_, p2_, piece_, work_);
   if (piece_.size() < 3) return false;
   // A piece is a convex part of p, so its perimeter is at most p's: most pieces are
   // judged without measuring their own.
-  const double area = signedArea(piece_);
+  area = signedArea(piece_);
   if (area <= 0.5 * eps * perimeterP_ && area <= 0.5 * eps * perimeter(piece_)) return false;
   double gapSum = 0.0;
   for (const Eigen::Vector2d& x : piece_) {
@@ -63,8 +66,7 @@ bool AreaOnPatch::isArea(double eps) {
     if (std::abs(gap) > eps) return false;
     gapSum += gap;
   }
-  pieceArea_.push_back(area);
-  pieceGap_.push_back(gapSum / static_cast<double>(piece_.size()));
+  meanGap = gapSum / static_cast<double>(piece_.size());
   return true;
 }
 

@@ -44,8 +44,9 @@ class AreaOnPatch {
   // Where x (2D, patch frame) meets the plane of a face within kPlanarityTolerance of the
   // patch, moved halfway to p's plane: a corner of the contact polygon.
   Eigen::Vector3d contactCorner(const Eigen::Vector2d& x, double& gap) const;
-  // Clips q2_ to p2_ into piece_; when the piece is an area, records its area and gap.
-  bool isArea(double eps);
+  // Clips q2_ to p2_ into piece_; true when the piece is an area (add()'s rule), with its
+  // area (m^2) and the mean gap (m) at its corners.
+  bool isArea(double eps, double& area, double& meanGap);
 
   PolygonView p_;
   PlaneFrame frame_{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ()};

@@ -72,7 +72,6 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
           continue;
         }
         // What fb has near fa lies on fa's area, as does what fa's side faces have near fb.
-        touching = true;
         ws.cover.addArea(fa, fb);
       }
     }

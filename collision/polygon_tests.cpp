@@ -207,8 +207,9 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
         // The grown clip overshoots q's sharp corners (by eps over the sine of half the
         // corner's angle): there the edge touches q only where it truly comes within eps.
         Eigen::Vector2d at = 0.5 * (a + b);
-        if (!isLine && distanceToConvex(s.q2, at) > eps) at = nearestPointToConvex(s.q2, a, b);
-        if (isLine || distanceToConvex(s.q2, at) <= eps) {
+        double offQ = isLine ? 0.0 : distanceToConvex(s.q2, at);
+        if (offQ > eps) at = nearestPointToConvex(s.q2, a, b), offQ = distanceToConvex(s.q2, at);
+        if (offQ <= eps) {
           const double gap = 0.5 * (dP[i] + dP[j]);
           const Eigen::Vector3d shift = (0.5 * gap) * q.plane.normal;
           const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
@@ -326,7 +327,7 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   bool area = false;
   if (facing) {
     const AreaOnPatch::Outcome onPatch = patch ? patch->add(q, eps) : AreaOnPatch::Outcome::OffPatch;
-    if (onPatch == AreaOnPatch::Outcome::Unsettled) return {Status::Separate, 0.0, false, true};
+    if (onPatch == AreaOnPatch::Outcome::Unsettled) return {};
     area = onPatch == AreaOnPatch::Outcome::Area ||
            (onPatch == AreaOnPatch::Outcome::OffPatch && areaContact(p, q, eps, out, s));
   }

@@ -40,8 +40,6 @@ struct PolygonPairOutcome {
   double depth = 0.0;
   /// For Contact, the pair is face on face (its contact is an area).
   bool area = false;
-  /// The pair waits for its patch to be finished (area_on_patch.h); status says nothing yet.
-  bool unsettled = false;
 };
 
 class AreaCover;
@@ -59,7 +57,8 @@ class AreaOnPatch;
 /// area contact already found holds whatever the pair would add, nothing is appended
 /// and the pair counts as in contact. When `patch` is given (begun on p, and `contacts`
 /// non-null), a facing pair that is not interpenetrating goes to the patch instead: its
-/// area joins the patch's pieces, or it is left unsettled (area_on_patch.h).
+/// area joins the patch's pieces, or it is left unsettled (area_on_patch.h) and counts
+/// as separate until the caller settles it.
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& scratch,
                                    const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr);
