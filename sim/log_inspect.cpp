@@ -41,9 +41,11 @@ void rowsOfStep(const ordered_json& step, const LogQuery& q, std::vector<ordered
   int tests = 0;
   for (const ordered_json& e : step["events"]) tests += e["iterations"].get<int>();
   row["toc_tests"] = tests;
-  row["penetration"] = step.value("penetration", 0.0);
-  row["energy"] = step["energy"];
-  row["solver_iterations"] = step.value("solver_iterations", 0);
+  // A figure the line does not hold is shown as null, never as a made-up 0.
+  auto figure = [&step](const char* key) { return step.contains(key) ? step[key] : ordered_json(nullptr); };
+  row["penetration"] = figure("penetration");
+  row["energy"] = figure("energy");
+  row["solver_iterations"] = figure("solver_iterations");
   if (q.body) {
     for (const ordered_json& b : step["bodies"])
       if (b["name"] == *q.body) {

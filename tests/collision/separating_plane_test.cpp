@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -115,6 +116,84 @@ TEST(SeparatingPlane, NeverClaimsApartWhatAScanOfVerticesDenies) {
   }
   EXPECT_GT(apart, 40);   // the test has cases to check
   EXPECT_LT(apart, 380);  // and the plane does not settle every pose
+}
+
+// Two icospheres (radius 1, 1280 triangles each) side by side in one mesh: closed,
+// locally convex, not convex, and with enough faces that its voxel grid is a real tree,
+// so its extent is bounded by branch and bound over the grid (the staple and the cup
+// above get no halvings and are scanned whole).
+MeshData twoSpheres() {
+  MeshData m = makeIcosphere(1.0, 3);
+  const MeshData second = makeIcosphere(1.0, 3);
+  const int shift = static_cast<int>(m.vertices.size());
+  for (const V3& v : second.vertices) m.vertices.push_back(v + V3(3, 0, 0));
+  for (std::vector<int> f : second.faces) {
+    for (int& i : f) i += shift;
+    m.faces.push_back(f);
+  }
+  return m;
+}
+
+// The highest vertex level along d, by a scan of every vertex (object frame).
+double scannedTop(const ObjNode& object, const V3& d) {
+  double top = -1e300;
+  for (const V3& v : object.mesh->vertices()) top = std::max(top, d.dot(v));
+  return top;
+}
+
+TEST(SeparatingPlane, BranchAndBoundTopIsAVertexWithinTheSlackOfTheScannedTop) {
+  ObjectDatabase db;
+  db.add("spheres", std::make_shared<PolygonMesh>(twoSpheres()), test::pose(V3::Zero()), false);
+  const ObjNode& spheres = db.objects[0];
+  ASSERT_GE(spheres.grid->halvings(), 4) << "the mesh must get a voxel tree for this test to mean anything";
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  for (int trial = 0; trial < 300; ++trial) {
+    const V3 d = V3(g(rng), g(rng), g(rng)).normalized();
+    const double top = scannedTop(spheres, d);
+    for (double slack : {0.0, 0.01, 0.3}) {
+      const double level = topLevelAlong(spheres, d, slack, -std::numeric_limits<double>::infinity());
+      EXPECT_LE(level, top) << "not a vertex's level, d " << d.transpose();
+      EXPECT_GE(level, top - slack) << "more than the slack " << slack << " below the top, d " << d.transpose();
+    }
+  }
+}
+
+// A box placed around the two-sphere mesh at random, from well apart to overlapping by
+// a few centimetres, along the line from the mesh's container centre: whenever the plane
+// test says "apart", a scan of both meshes' vertices along that line must agree. With
+// the non-convex bound's slack dropped it said "apart" at 5 mm of overlap.
+TEST(SeparatingPlane, NonConvexMeshWithAVoxelTreeIsNeverClaimedApartWhenItOverlaps) {
+  auto spheres = std::make_shared<PolygonMesh>(twoSpheres());
+  auto box = std::make_shared<PolygonMesh>(makeBox(V3(0.5, 0.5, 0.5)));
+  ObjectDatabase db;
+  db.add("spheres", spheres, test::pose(V3::Zero()), false);
+  db.add("box", box, test::pose(V3::Zero()), false);
+  const ObjNode &a = db.objects[0];
+  ObjNode& b = db.objects[1];
+  const V3 centre = worldContainer(a).center();
+  std::mt19937 rng(23);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> gap(-0.03, 0.05);  // < 0: overlapping
+  int apart = 0, overlappingTried = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const V3 d = V3(g(rng), g(rng), g(rng)).normalized();
+    const auto rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    const double top = scannedTop(a, d) - d.dot(centre);              // the spheres' reach along d
+    const double reach = 0.25 * (rotation.transpose() * d).cwiseAbs().sum();  // the box's, towards them
+    const double wanted = gap(rng);
+    b.X_WO = test::pose(centre + (top + reach + wanted) * d, rotation);
+    double bottom = 1e300;
+    for (const V3& v : box->vertices()) bottom = std::min(bottom, d.dot(b.X_WO * v) - d.dot(centre));
+    ASSERT_NEAR(bottom - top, wanted, 1e-9);  // the box's centre, and so the centre line, is where planned
+    overlappingTried += wanted < 0.0;
+    if (separatedAlongCentreLine(a, b, kDefaultContactTolerance)) {
+      ++apart;
+      EXPECT_GT(bottom - top, kDefaultContactTolerance) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(overlappingTried, 150);
+  EXPECT_GT(apart, 200);  // most poses apart by more than the tolerance are proven so
 }
 
 }  // namespace
