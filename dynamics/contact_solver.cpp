@@ -102,7 +102,11 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     r.normalMass = effectiveMass(r, r.normal);
     const double approach = r.normal.dot(relativeVelocity(r));
     if (approach < -kBounceThreshold) r.restitution = c.restitution;
-    r.target = -std::max(c.separation, 0.0) / dt;
+    // A contact still apart may close its gap within the step (a speculative target),
+    // but a bouncing one is stopped outright: restitution returns e times the impulse
+    // that stopped it, and closing the gap first would take gap / dt off the rebound
+    // (0.6% of the speed per bounce at dt 1/240, measured on bounce_e09).
+    r.target = r.restitution > 0 ? 0.0 : -std::max(c.separation, 0.0) / dt;
     r.tangent1 = r.normal.unitOrthogonal();
     r.tangent2 = r.normal.cross(r.tangent1);
     if (r.friction > 0) {

@@ -185,6 +185,35 @@ TEST_P(TimeOfContact, TouchingObjectsMovingApart) {
   EXPECT_EQ(r.status, Status::Separate);
 }
 
+// A pair touching at the start and pressing on (a box settling into the band) shows
+// "contact" all the way to the interpenetration, so there is no moment of just contact
+// to find: the contract is that the bracket is narrowed until nothing moves more than
+// eps inside it, and its start returned. The bracket's end is the first interpenetrating
+// time t* = (gap + eps) / v for bisection, and the root of the signed separation, the
+// touching time gap / v, for regula falsi (it brackets where the measure crosses zero).
+// So the returned time lies before t*, and before that end by at most eps over the
+// motion bound v. Many speeds and starting gaps, so that a bracket allowed to be twice as
+// wide shows.
+TEST_P(TimeOfContact, TouchingPairPressingOnIsBracketedToTheTolerance) {
+  int cases = 0;
+  for (double gap : {0.0, 0.3 * kEps, 0.9 * kEps})
+    for (double speed = 3 * kEps; speed < 500 * kEps; speed *= 1.13) {
+      SCOPED_TRACE("gap " + std::to_string(gap / kEps) + " eps, speed " + std::to_string(speed / kEps) + " eps");
+      World w;
+      w.addStatic(kSlab, kSlabPose);
+      w.addMoving(kCube, pose(V3(0, 0, 0.5 + gap)), V3(0, 0, -speed));
+      const TocResult r = w.detect(GetParam());
+      const double firstInterpenetrating = (gap + kEps) / speed;
+      const double bracketEnd = GetParam() == TocMethod::Bisection ? firstInterpenetrating : gap / speed;
+      ASSERT_EQ(r.status, Status::Contact);
+      EXPECT_EQ(r.stoppedBy, TocStop::TimeTolerance);
+      EXPECT_LE(r.time, firstInterpenetrating);
+      EXPECT_LE(bracketEnd - r.time, kEps / speed * (1 + 1e-9));
+      ++cases;
+    }
+  EXPECT_GT(cases, 100);
+}
+
 TEST_P(TimeOfContact, InterpenetrationAtTheStartIsAnErrorNamingThePair) {
   World w;
   w.addStatic(kSlab, kSlabPose);
