@@ -128,6 +128,43 @@ TEST(StepLog, PolysimLogKeepsOnlyTheStepsInTheTimeWindow) {
   EXPECT_EQ(rows.size(), 121u);  // steps ending at 0.5, 0.5 + 1/240, ..., 1.0 (the scene's dt 1/240)
 }
 
+// A box rattling at 10 m/s between two walls 1 mm apart, elastic, without gravity: a
+// bounce every 0.1 ms, so every step of 1/60 s reaches the event bound. The summary
+// counts those steps as the log marks them, and `polysim log` sums each step's tests.
+TEST(StepLog, StepsAtTheEventBoundAreCountedAndTheirTestsSummed) {
+  const std::string scenePath = testing::TempDir() + "polysim_rattle.json";
+  std::ofstream(scenePath) << R"({"name": "rattle", "gravity": [0, 0, 0], "dt": 0.016666666666666666,
+    "contact": {"tolerance": 1e-4, "restitution": 1.0, "friction": 0.0},
+    "bodies": [
+      {"name": "left", "static": true, "shape": {"type": "box", "size": [1, 4, 4]}, "position": [-1.0005, 0, 0]},
+      {"name": "right", "static": true, "shape": {"type": "box", "size": [1, 4, 4]}, "position": [1.0005, 0, 0]},
+      {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}, "velocity": [10, 0, 0], "mass": 1.0}]})";
+  const std::string logPath = testing::TempDir() + "polysim_rattle.jsonl";
+  RunOptions options;
+  options.logPath = logPath;
+  options.duration = 0.1;
+  const json summary = runScene(loadScene(scenePath), options);
+  std::vector<json> lines;
+  std::ifstream in(logPath);
+  for (std::string line; std::getline(in, line);) lines.push_back(json::parse(line));
+  long marked = 0;
+  for (const json& line : lines) marked += line.value("event_limit", false);
+  EXPECT_EQ(marked, 6);  // every one of the 6 steps
+  EXPECT_EQ(summary["event_limit_steps"].get<long>(), marked);
+  EXPECT_NEAR(summary["energy"]["final"].get<double>(), 50.0, 1e-6);  // elastic: 0.5 m v^2 kept
+
+  std::ostringstream out;
+  inspectLog(logPath, {}, out);
+  const json rows = json::parse(out.str());
+  ASSERT_EQ(rows.size(), lines.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    int tests = 0;
+    for (const json& e : lines[k]["events"]) tests += e["iterations"].get<int>();
+    EXPECT_GE(lines[k]["events"].size(), 2u);
+    EXPECT_EQ(rows[k]["toc_tests"].get<int>(), tests) << "step " << k + 1;
+  }
+}
+
 // A figure missing from a line is shown as missing, not as a plausible zero.
 TEST(StepLog, PolysimLogShowsAMissingFigureAsNull) {
   const std::string path = testing::TempDir() + "polysim_step_log_missing.jsonl";
