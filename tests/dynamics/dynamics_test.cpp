@@ -21,20 +21,25 @@ RigidBody unitBox(double mass) {
   return RigidBody::dynamic(withMass(computeMassProperties(box.vertices, box.faces, 1.0), mass));
 }
 
-// An impulse on a 1 x 2 x 3 box turned a quarter turn about z: its body x axis points
-// along world y, so the world inertia is diag(Iyy, Ixx, Izz) of the body's, and the
-// spin an impulse gives follows from that by hand.
+// An impulse on a 1 x 2 x 3 box turned by 30 degrees about z: its body x axis points
+// along (cos, sin, 0), so its world inverse inertia R I^-1 R^T has the off-diagonal term
+// cos sin (1/Ixx - 1/Iyy), whose sign tells R I^-1 R^T from R^T I^-1 R; the spin an
+// impulse gives follows from that by hand.
 TEST(RigidBody, ImpulseOnATurnedBoxSpinsItByTheWorldInertia) {
   const collision::MeshData data = collision::makeBox(V3(1, 2, 3));
   RigidBody b = RigidBody::dynamic(withMass(computeMassProperties(data.vertices, data.faces, 1.0), 6.0));
   const double m = 6.0, Ixx = m * (4 + 9) / 12.0, Iyy = m * (1 + 9) / 12.0, Izz = m * (1 + 4) / 12.0;
-  b.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, V3::UnitZ()));
-  const Eigen::Matrix3d expected = V3(1 / Iyy, 1 / Ixx, 1 / Izz).asDiagonal();
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  b.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 6, V3::UnitZ()));
+  Eigen::Matrix3d expected;
+  expected << c * c / Ixx + s * s / Iyy, c * s * (1 / Ixx - 1 / Iyy), 0,  //
+      c * s * (1 / Ixx - 1 / Iyy), s * s / Ixx + c * c / Iyy, 0,          //
+      0, 0, 1 / Izz;
   EXPECT_TRUE(b.inverseInertiaWorld().isApprox(expected, 1e-12)) << b.inverseInertiaWorld();
   // 1 N s along z at world (0.5, 0.25, 0): torque r x J = (0.25, -0.5, 0).
   b.applyImpulse(V3(0, 0, 1), V3(0.5, 0.25, 0));
   EXPECT_TRUE(test::near(b.velocity, V3(0, 0, 1 / m), 1e-12));
-  EXPECT_TRUE(test::near(b.angularVelocity, V3(0.25 / Iyy, -0.5 / Ixx, 0), 1e-12));
+  EXPECT_TRUE(test::near(b.angularVelocity, expected * V3(0.25, -0.5, 0), 1e-12));
 }
 
 TEST(RigidBody, ABodySpinningInPlaceIsNotAtRest) {
