@@ -214,6 +214,23 @@ TEST(Intersection, StaticPairsAreNeverTested) {
   EXPECT_EQ(r.polygonPairsTested, 0);
 }
 
+// The containers are padded by the tolerance the objects were added with; the overlap
+// region grows them by the database's tolerance when judging, so raising the tolerance
+// afterwards (as a caller tuning it may) still finds every pair within the new band.
+TEST(Intersection, ToleranceRaisedAfterTheObjectsWereAddedStillFindsTheContact) {
+  ObjectDatabase db;
+  db.tolerance = 1e-4;
+  db.add("box", std::make_shared<PolygonMesh>(kUnitBox), pose(V3(0, 0, 0.5 + 5e-4)), false);
+  db.add("floor", std::make_shared<PolygonMesh>(kFloorBox), kFloorPose, true);
+  EXPECT_EQ(test4Intersection(db).status, Status::Separate);  // 0.5 mm apart: beyond 0.1 mm
+  db.tolerance = 1e-3;
+  const IntersectionResult r = test4Intersection(db);
+  EXPECT_EQ(r.status, Status::Contact);  // within 1 mm
+  ASSERT_EQ(r.pairs.size(), 1u);
+  ASSERT_EQ(r.pairs[0].contacts.size(), 1u);
+  EXPECT_NEAR(r.pairs[0].contacts[0].separation, 5e-4, 1e-12);
+}
+
 TEST(Intersection, StopAtInterpenetrationSkipsTheRest) {
   ObjectDatabase db;
   db.add("A", std::make_shared<PolygonMesh>(kUnitBox), pose(V3(0, 0, 0.5)), false);

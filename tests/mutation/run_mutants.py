@@ -12,7 +12,10 @@ survived. Nothing in the working tree is touched: the copy and its build live un
     tests/mutation/run_mutants.py --list          # names and whether each still applies
 
 Exit status: 0 when the share killed is at least --min-score percent (default 90) and
-no mutant is stale or fails to build, 1 otherwise. Runs on demand, not in CI: each
+no mutant is stale or fails to build, 1 otherwise. A mutant marked `equivalent:` (no
+test can tell it from the original: it changes only speed, or guards against what
+cannot happen) is run like the others but left out of the score; should one be killed,
+the mark is wrong and the run says so. Runs on demand, not in CI: each
 mutant costs an incremental build and a run of the suite (about a minute here).
 """
 
@@ -38,6 +41,7 @@ class Mutant:
     name: str
     file: str = ""
     why: str = ""
+    equivalent: str = ""  # why no test can tell it from the original (it is then left out of the score)
     edits: list = field(default_factory=list)  # (find, replace) pairs
 
 
@@ -56,6 +60,8 @@ def parse_mutants(path):
             current.file = line[5:].strip()
         elif line.startswith("why:"):
             current.why = line[4:].strip()
+        elif line.startswith("equivalent:"):
+            current.equivalent = line[11:].strip()
         elif line.startswith("- "):
             pending_find = line[2:]
         elif line.startswith("+"):
@@ -191,15 +197,20 @@ def main():
     with open(log_path, "a") as log:  # leave the copy's build unmutated
         build(src, build_dir, log)
 
-    counted = [r for r in results if r[1] in ("killed", "survived")]
+    ran = [r for r in results if r[1] in ("killed", "survived")]
+    counted = [r for r in ran if not r[0].equivalent]
     killed = sum(r[1] == "killed" for r in counted)
     score = 100.0 * killed / len(counted) if counted else 0.0
-    print(f"\n{killed} of {len(counted)} mutants killed ({score:.0f}%)")
-    for outcome in ("survived", "stale", "no-build"):
-        names = [r[0] for r in results if r[1] == outcome]
-        for m in names:
+    print(f"\n{killed} of {len(counted)} mutants killed ({score:.0f}%); "
+          f"{sum(r[1] == 'killed' for r in ran)} of {len(ran)} counting the {len(ran) - len(counted)} marked equivalent")
+    for m, outcome, reason, seconds in results:
+        if outcome == "survived" and m.equivalent:
+            print(f"  equivalent: {m.name} ({m.file}): {m.equivalent}")
+        elif outcome == "killed" and m.equivalent:
+            print(f"  MARKED EQUIVALENT BUT KILLED: {m.name} by {reason}: remove the mark")
+        elif outcome != "killed":
             print(f"  {outcome}: {m.name} ({m.file}): {m.why}")
-    broken = any(r[1] in ("stale", "no-build") for r in results)
+    broken = any(r[1] in ("stale", "no-build") or (r[1] == "killed" and r[0].equivalent) for r in results)
     return 0 if score >= args.min_score and not broken else 1
 
 
