@@ -1,7 +1,5 @@
 #include "sim/commands.h"
 
-#include <cstdio>
-#include <fstream>
 #include <ostream>
 #include <stdexcept>
 
@@ -11,7 +9,9 @@
 #include "sim/ode_baseline.h"
 #include "sim/run.h"
 #include "sim/scene.h"
+#include "sim/scene_generators.h"
 #include "sim/sweep.h"
+#include "sim/whole_file.h"
 
 namespace polysim::sim {
 namespace {
@@ -82,19 +82,17 @@ int sweepCommand(const SweepOptions& options, const std::string& outPath, std::o
     writeSweepCsv(runSweep(options, progress), out);
     return 0;
   }
-  // Opened before the runs, so that an unwritable path fails at once, not after minutes.
-  const std::string partial = outPath + ".partial";
-  std::ofstream file(partial);
-  if (!file) throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
-  try {
-    writeSweepCsv(runSweep(options, progress), file);
-    if (!file.flush()) throw std::runtime_error(outPath + ": writing the sweep's CSV failed");
-    file.close();
-    if (std::rename(partial.c_str(), outPath.c_str()) != 0) throw std::runtime_error(outPath + ": cannot write the sweep's CSV");
-  } catch (...) {
-    std::remove(partial.c_str());
-    throw;
+  writeWholeFile(outPath, "the sweep's CSV", [&](std::ostream& file) { writeSweepCsv(runSweep(options, progress), file); });
+  return 0;
+}
+
+int makeCommand(const MakeOptions& options, const std::string& outPath, std::ostream& out) {
+  const nlohmann::ordered_json scene = makeScene(options);  // all checks before anything is written
+  if (outPath.empty()) {
+    out << scene.dump(1) << "\n";
+    return 0;
   }
+  writeWholeFile(outPath, "the scene", [&](std::ostream& file) { file << scene.dump(1) << "\n"; });
   return 0;
 }
 

@@ -31,4 +31,9 @@ int compareCommand(const std::string& scenePath, const struct RunOptions& option
 int sweepCommand(const struct SweepOptions& options, const std::string& outPath, std::ostream& out,
                  std::ostream* progress);
 
+/// `polysim make KIND [--count N] [--seed S] [--tilt RAD] [--dt S] [--duration S] [--out
+/// FILE]`: a generated scene (scene_generators.h), to FILE (written whole or not at all)
+/// or to `out`. The same options give the same bytes.
+int makeCommand(const struct MakeOptions& options, const std::string& outPath, std::ostream& out);
+
 }  // namespace polysim::sim

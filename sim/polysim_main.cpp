@@ -9,6 +9,7 @@
 #include "sim/run.h"
 #include "sim/ode_world.h"
 #include "sim/scene.h"
+#include "sim/scene_generators.h"
 #include "sim/sweep.h"
 
 int main(int argc, char** argv) {
@@ -74,6 +75,21 @@ int main(int argc, char** argv) {
   sweep->add_flag("--quick", sweepOptions.quick, "two steps, one setting per solver, short runs");
   sweep->add_option("--out", sweepOut, "CSV file (default: standard output)");
 
+  polysim::sim::MakeOptions makeOptions;
+  std::string makeOut;
+  int makeCount = 0;
+  double makeTilt = -1.0, makeDt = 0.0, makeDuration = 0.0;
+  CLI::App* make = app.add_subcommand("make", "write a generated scene: a stack, pyramid, pile, dominoes or cups");
+  make->add_option("KIND", makeOptions.kind, "stack, pyramid, pile, dominoes or cups")
+      ->required()
+      ->check(CLI::IsMember(polysim::sim::sceneKinds()));
+  make->add_option("--count", makeCount, "bodies (the base row of a pyramid)")->check(CLI::Range(1, 10000));
+  make->add_option("--seed", makeOptions.seed, "seed of the random tilts and offsets")->capture_default_str();
+  make->add_option("--tilt", makeTilt, "largest random tilt of each body, rad (pile and cups)")->check(CLI::Range(0.0, 0.3));
+  make->add_option("--dt", makeDt, "the scene's step, s (default 1/60)")->check(CLI::PositiveNumber);
+  make->add_option("--duration", makeDuration, "the scene's duration, s")->check(CLI::PositiveNumber);
+  make->add_option("--out", makeOut, "scene file to write (default: standard output)");
+
   CLI11_PARSE(app, argc, argv);
   auto takeRunFlags = [&] {  // shared by run and compare
     if (runDuration > 0) runOptions.duration = runDuration;
@@ -99,6 +115,13 @@ int main(int argc, char** argv) {
     }
     if (sweep->parsed()) return polysim::sim::sweepCommand(sweepOptions, sweepOut, std::cout, isatty(STDERR_FILENO) ? &std::cerr : nullptr);
     if (toc->parsed()) return polysim::sim::tocCommand(scene, interval, method, std::cout);
+    if (make->parsed()) {
+      if (makeCount > 0) makeOptions.count = makeCount;
+      if (makeTilt >= 0) makeOptions.tilt = makeTilt;
+      if (makeDt > 0) makeOptions.dt = makeDt;
+      if (makeDuration > 0) makeOptions.duration = makeDuration;
+      return polysim::sim::makeCommand(makeOptions, makeOut, std::cout);
+    }
   } catch (const polysim::sim::SceneError& e) {
     std::cerr << e.what() << "\n";
     return 1;
