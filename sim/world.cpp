@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "collision/aabb.h"
+#include "collision/broadphase.h"
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
+#include "sim/islands.h"
 
 namespace polysim::sim {
 
@@ -37,28 +40,11 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
 const StepReport& World::step(double dt) {
   report_ = StepReport{report_.step + 1, 0.0, {}, false, 0.0, 0};
   std::fill(free_.begin(), free_.end(), 1);
-  supportTouchingBodies(dt);  // gravity into the velocities of bodies in contact; the others fly free
-  resolveContacts(dt, true);  // the contacts the step starts with (resting, stacked)
-  double remaining = dt;
-  for (int events = 0; remaining > 0;) {
-    predictMotion(remaining);                                // each body's path over the rest of the step
-    const collision::TocResult toc = detectCollisions();     // back up to the first contact, if any
-    const double elapsed = toc.time * remaining;
-    commitPoses(elapsed);                                    // the bodies move to that state
-    remaining -= elapsed;
-    noteContacts(toc, time_ + (dt - remaining));
-    if (toc.stoppedBy == collision::TocStop::NoInterpenetration) break;
-    report_.events.push_back({time_ + (dt - remaining), toc});
-    if (++events == kMaxEventsPerStep) {                     // rest out the step (see kMaxEventsPerStep)
-      report_.eventLimitHit = true;
-      for (size_t i = 0; i < bodies_.size(); ++i)
-        if (free_[i]) dynamics::integrateVelocity(bodies_[i], scene_.gravity, remaining);
-      break;
-    }
-    resolveContacts(remaining, false);                       // impulses at the contact
-    if (supportTouchingBodies(remaining))                    // bodies that landed take the rest of the step's gravity,
-      resolveContacts(remaining, false);                     // after their impact, and their contacts carry it
-  }
+  supportTouchingBodies(contacts_, dt);  // gravity into the velocities of bodies in contact; the others fly free
+  resolveContacts(contacts_, dt, true);  // the contacts the step starts with (resting, stacked)
+  std::vector<collision::PairResult> contactsAfter;
+  for (const std::vector<int>& island : islandsOfStep(dt)) stepIsland(island, dt, contactsAfter);
+  contacts_ = std::move(contactsAfter);
   const double y = dt - timeCompensation_, sum = time_ + y;  // compensated time_ += dt
   timeCompensation_ = (sum - time_) - y;
   time_ = sum;
@@ -66,9 +52,71 @@ const StepReport& World::step(double dt) {
   return report_;
 }
 
-bool World::supportTouchingBodies(double duration) {
-  bool any = false;
+std::vector<std::vector<int>> World::islandsOfStep(double duration) const {
+  std::vector<Eigen::AlignedBox3d> bounds(bodies_.size());
+  std::vector<char> dynamic(bodies_.size());
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    const dynamics::RigidBody& b = bodies_[i];
+    dynamic[i] = !b.isStatic;
+    if (b.isStatic) continue;
+    const Eigen::Vector3d gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
+    bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]), pathMotionBound(b, sizes_[i], duration, gravity));
+  }
+  std::vector<std::pair<int, int>> touching;
+  for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
+  return findIslands(bounds, dynamic, touching);
+}
+
+void World::stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter) {
+  collision::ObjectDatabase& db = databaseFor(island);
+  std::vector<collision::PairResult> contacts;  // the island's, body indices
   for (const collision::PairResult& p : contacts_)
+    if (std::binary_search(island.begin(), island.end(), bodies_[p.a].isStatic ? p.b : p.a)) contacts.push_back(p);
+  double remaining = dt;
+  for (int events = 0; remaining > 0;) {
+    predictMotion(island, remaining);                        // each body's path over the rest of the step
+    collision::TocResult toc = detectCollisions(db);         // back up to the island's first contact, if any
+    const double elapsed = toc.time * remaining;
+    commitPoses(island, elapsed);                            // its bodies move to that state
+    remaining -= elapsed;
+    contacts = std::move(toc.pairs);
+    noteContacts(contacts, time_ + (dt - remaining));
+    if (toc.stoppedBy == collision::TocStop::NoInterpenetration) break;
+    toc.pairs = contacts;
+    report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
+    if (++events == kMaxEventsPerStep) {                     // rest out the step (see kMaxEventsPerStep)
+      report_.eventLimitHit = true;
+      for (int i : island)
+        if (free_[i]) dynamics::integrateVelocity(bodies_[i], scene_.gravity, remaining);
+      break;
+    }
+    resolveContacts(contacts, remaining, false);             // impulses at the contact
+    if (supportTouchingBodies(contacts, remaining))          // bodies that landed take the rest of the step's gravity,
+      resolveContacts(contacts, remaining, false);           // after their impact, and their contacts carry it
+  }
+  contactsAfter.insert(contactsAfter.end(), contacts.begin(), contacts.end());
+}
+
+collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
+  islandIds_.clear();
+  int dynamicBodies = 0;
+  for (const dynamics::RigidBody& b : bodies_) dynamicBodies += !b.isStatic;
+  if (static_cast<int>(island.size()) == dynamicBodies) return db_;
+  islandDb_.tolerance = db_.tolerance;
+  islandDb_.objects.clear();
+  for (size_t i = 0, k = 0; i < bodies_.size(); ++i) {
+    while (k < island.size() && island[k] < static_cast<int>(i)) ++k;
+    if (bodies_[i].isStatic || (k < island.size() && island[k] == static_cast<int>(i))) {
+      islandDb_.objects.push_back(db_.objects[i]);
+      islandIds_.push_back(static_cast<int>(i));
+    }
+  }
+  return islandDb_;
+}
+
+bool World::supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration) {
+  bool any = false;
+  for (const collision::PairResult& p : contacts)
     for (int i : {p.a, p.b})
       if (free_[i]) {
         dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);  // nothing for a static body
@@ -78,9 +126,9 @@ bool World::supportTouchingBodies(double duration) {
   return any;
 }
 
-void World::resolveContacts(double horizon, bool remember) {
+void World::resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember) {
   std::vector<dynamics::ContactPoint> points;
-  for (const collision::PairResult& pair : contacts_) {
+  for (const collision::PairResult& pair : contacts) {
     const PairMaterial& a = materials_[pair.a];
     const PairMaterial& b = materials_[pair.b];
     appendContactPoints(pair.a, pair.b, pair.contacts,
@@ -111,12 +159,12 @@ void World::resolveContacts(double horizon, bool remember) {
   lastSolved_ = std::move(points);
 }
 
-void World::predictMotion(double duration) {
-  for (size_t i = 0; i < bodies_.size(); ++i) {
+void World::predictMotion(const std::vector<int>& island, double duration) {
+  for (int i : island) {
     collision::ObjNode& node = db_.objects[i];
     const dynamics::RigidBody& b = bodies_[i];
-    const bool falling = !b.isStatic && free_[i] && !scene_.gravity.isZero(0.0);
-    const bool moving = falling || (!b.isStatic && (!b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0)));
+    const bool falling = free_[i] && !scene_.gravity.isZero(0.0);
+    const bool moving = falling || !b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0);
     node.ctrans = moving ? bodyPathPose : nullptr;  // a body at rest costs no update
     paths_[i].duration = duration;
     paths_[i].gravity = falling ? scene_.gravity : Eigen::Vector3d::Zero();
@@ -124,23 +172,30 @@ void World::predictMotion(double duration) {
   }
 }
 
-collision::TocResult World::detectCollisions() {
-  db_.setTime(1.0);  // collisionDetect() starts from the end of the interval
-  return collision::collisionDetect(db_, workspace_, tocOptions_);
+collision::TocResult World::detectCollisions(collision::ObjectDatabase& db) {
+  if (islandIds_.empty()) {
+    db.setTime(1.0);  // collisionDetect() starts from the end of the interval
+    return collision::collisionDetect(db, workspace_, tocOptions_);
+  }
+  for (size_t k = 0; k < islandIds_.size(); ++k) db.objects[k] = db_.objects[islandIds_[k]];  // this round's paths
+  db.setTime(1.0);
+  collision::TocResult toc = collision::collisionDetect(db, workspace_, tocOptions_);
+  for (size_t k = 0; k < islandIds_.size(); ++k) db_.objects[islandIds_[k]].X_WO = db.objects[k].X_WO;
+  for (collision::PairResult& p : toc.pairs) p.a = islandIds_[p.a], p.b = islandIds_[p.b];
+  return toc;
 }
 
-void World::commitPoses(double elapsed) {
+void World::commitPoses(const std::vector<int>& island, double elapsed) {
   // The same path and the same product s * duration as ctrans used: the committed poses
   // are exactly the state collisionDetect() tested.
   // Bodies without a path did not move (and are not re-derived from their centre of mass).
-  for (size_t i = 0; i < bodies_.size(); ++i)
+  for (int i : island)
     if (db_.objects[i].ctrans) dynamics::advancePose(bodies_[i], elapsed, paths_[i].gravity);
 }
 
-void World::noteContacts(const collision::TocResult& toc, double at) {
-  contacts_ = toc.pairs;
-  if (!contacts_.empty() && firstContact_ < 0) firstContact_ = at;
-  for (const collision::PairResult& p : contacts_)
+void World::noteContacts(const std::vector<collision::PairResult>& contacts, double at) {
+  if (!contacts.empty() && firstContact_ < 0) firstContact_ = at;
+  for (const collision::PairResult& p : contacts)
     for (const collision::Contact& c : p.contacts) report_.penetration = std::max(report_.penetration, -c.separation);
 }
 

@@ -14,9 +14,10 @@
 namespace polysim::sim {
 
 /// Most contact events (collisionDetect() returning before the end of the remaining
-/// step) handled in one step. A box bouncing ever lower has infinitely many bounces in
-/// finite time; past this bound the rest of the step is spent at rest (bodies keep
-/// their resolved velocities, poses stay), and the step records that it hit the bound.
+/// step) one island handles in one step. A box bouncing ever lower has infinitely many
+/// bounces in finite time; past this bound the rest of the island's step is spent at
+/// rest (bodies keep their resolved velocities, poses stay), and the step records that
+/// it hit the bound.
 inline constexpr int kMaxEventsPerStep = 8;
 
 /// A contact point is taken for last solve's point of the same pair when it lies within
@@ -59,22 +60,34 @@ class World {
   double firstContactTime() const { return firstContact_; }
 
  private:
-  /// Bodies touching something at this point of the step (in contacts_) that were flying
-  /// free get gravity for the next `duration` seconds into their velocity now and move in
-  /// a straight line from here (semi-implicit Euler); the others keep flying their exact
-  /// parabola (dynamics/integrator.h). True when any body changed so.
-  bool supportTouchingBodies(double duration);
-  /// Solves the current contacts over `horizon` seconds. `remember`: keep the result as
-  /// the forces the next solves warm-start from.
-  void resolveContacts(double horizon, bool remember);
-  void predictMotion(double duration);
-  collision::TocResult detectCollisions();
-  void commitPoses(double elapsed);
-  void noteContacts(const collision::TocResult& toc, double at);
+  /// Bodies touching something at this point of the step (in `contacts`) that were
+  /// flying free get gravity for the next `duration` seconds into their velocity now and
+  /// move in a straight line from here (semi-implicit Euler); the others keep flying their
+  /// exact parabola (dynamics/integrator.h). True when any body changed so.
+  bool supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration);
+  /// Solves `contacts` over `horizon` seconds. `remember`: keep the result as the forces
+  /// the next solves warm-start from.
+  void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember);
+  /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
+  /// that overlap over `duration`.
+  std::vector<std::vector<int>> islandsOfStep(double duration) const;
+  /// Steps one island through its contact events over `dt`; appends its contacts at the
+  /// end of the step to `contactsAfter`.
+  void stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter);
+  /// The database collisionDetect() is given for an island: the world's own when the
+  /// island holds every dynamic body, else islandDb_ filled with the island's bodies and
+  /// every static one (islandIds_ maps its objects to body indices).
+  collision::ObjectDatabase& databaseFor(const std::vector<int>& island);
+  void predictMotion(const std::vector<int>& island, double duration);
+  collision::TocResult detectCollisions(collision::ObjectDatabase& db);
+  void commitPoses(const std::vector<int>& island, double elapsed);
+  void noteContacts(const std::vector<collision::PairResult>& contacts, double at);
 
   Scene scene_;
   collision::TocOptions tocOptions_;
   collision::ObjectDatabase db_;
+  collision::ObjectDatabase islandDb_;  // one island's share of db_ (databaseFor)
+  std::vector<int> islandIds_;          // islandDb_'s objects as body indices; empty: db_ itself
   collision::IntersectionWorkspace workspace_;  // reused by every collisionDetect() call
   std::vector<dynamics::RigidBody> bodies_;
   std::vector<BodyPath> paths_;
