@@ -63,6 +63,15 @@ TEST(ContactAgreement, MeasuresNormalPointAndDepthAgainstTheNearestContact) {
   EXPECT_NEAR(d.depthError, 3e-6, 1e-12);
 }
 
+// A normal pointing the other way (from a to b) is the worst disagreement there is,
+// half a turn, not agreement.
+TEST(ContactAgreement, AFlippedNormalIsHalfATurnOff) {
+  collision::PairResult pair;
+  pair.contacts = {unitSquareOnFloor()};
+  const std::vector<dContactGeom> ode = {odeContact(V3(0.5, 0.5, 0), -V3::UnitZ(), 2e-4)};
+  EXPECT_NEAR(comparePairContacts(pair, ode, 2e-4, 1e-4).normalAngle, M_PI, 1e-12);
+}
+
 TEST(ContactAgreement, LeavesOutOdeContactsThatPressingBroughtInFromBeyondTheTolerance) {
   collision::PairResult pair;
   pair.contacts = {unitSquareOnFloor()};

@@ -10,6 +10,7 @@
 
 #include "dynamics/settings.h"
 #include "sim/run.h"
+#include "sim/scene.h"
 #include "sim/step_log.h"
 #include "sim/world.h"
 
@@ -234,6 +235,27 @@ TEST(FailureModes, FastSmallBoxDoesNotTunnelThroughAThinPlate) {
 // and flight is exact, so the impacts fall at T0 = sqrt(2h/g), T(k+1) = T(k) + 2 e^(k+1)
 // v0 / g, each found within the band over its speed. Impacts slower than kBounceThreshold
 // do not bounce, so the box comes to rest without reaching the event bound.
+// A plank 2 m long and 1 cm thick spinning at 180 rad/s (3 rad a step at 1/60) beside a
+// wall 2 cm thick that its tips reach: between two step ends the tips sweep through the
+// wall and out again, so only a motion bound that counts the spin (tip speed 180 m/s)
+// splits the step finely enough to catch the hit. Turning clockwise from +y, the tip
+// meets the wall's face at x = 0.69 after asin(0.69) = 0.7614 rad, at 4.23 ms.
+TEST(FailureModes, SpinningPlankDoesNotTunnelThroughAThinWall) {
+  const std::string path = testing::TempDir() + "polysim_spinning_plank.json";
+  std::ofstream(path) << R"({"name": "spinning_plank", "gravity": [0, 0, 0], "dt": 0.016666666666666666,
+    "bodies": [
+      {"name": "wall", "static": true, "shape": {"type": "box", "size": [0.02, 2, 2]}, "position": [0.7, 0, 0]},
+      {"name": "plank", "shape": {"type": "box", "size": [0.01, 2, 0.2]}, "angular_velocity": [0, 0, -180], "mass": 1.0}]})";
+  World w(loadScene(path));
+  const double energyBefore = w.energy();
+  const StepReport& r = w.step(w.scene().dt);
+  EXPECT_GE(r.events.size(), 1u);
+  // The leading corner sits 5 mm ahead of the plank's mid-line: it arrives a little early.
+  EXPECT_NEAR(w.firstContactTime(), std::asin(0.69) / 180.0, 2e-4);
+  EXPECT_LE(r.penetration, w.scene().contact.tolerance);
+  EXPECT_LE(w.energy(), energyBefore);
+}
+
 TEST(FailureModes, BoxBouncingWithRestitution09ComesToRestWithoutStalling) {
   World w(scene("bounce_e09"));
   const double e = w.scene().contact.restitution, v0 = std::sqrt(2 * g * 2.0);

@@ -110,6 +110,8 @@ INSTANTIATE_TEST_SUITE_P(
         Rejection{"mass_and_density", SceneFiles::withBody(std::string(kBox) + R"(, "mass": 1, "density": 5)"), "mass or density, not both"},
         Rejection{"non_unit_quaternion", SceneFiles::withBody(std::string(kBox) + R"(, "orientation": [1, 0, 0, 0.1])"),
                   "orientation must be a unit quaternion"},
+        Rejection{"short_quaternion", SceneFiles::withBody(std::string(kBox) + R"(, "orientation": [0.9, 0, 0, 0])"),
+                  "orientation must be a unit quaternion [w, x, y, z] (its length is 0.9)"},
         Rejection{"negative_radius", SceneFiles::withBody(R"("shape": {"type": "icosphere", "radius": -1})"), "radius must be positive"},
         Rejection{"duplicate_names", R"({"bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}},
                    {"name": "a", "shape": {"type": "box", "size": [1,1,1]}, "position": [5,0,0]}]})", "body \"a\": duplicate name"},
