@@ -4,6 +4,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "collision/tolerances.h"
+
 namespace polysim::sim {
 namespace {
 
@@ -92,7 +94,8 @@ void pile(int count, double tilt, Random& random, ordered_json& bodies) {
   constexpr double kSpacing = 1.5, kPen = 16.0, kWall = 10.0;
   // A unit box turned by up to 0.3 rad reaches at most 0.69 m from its centre along an
   // axis, so boxes 1.5 m apart cannot touch; the grid is at most 10 wide to fit the pen.
-  const int side = std::min(10, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(count)) - 1e-9)));
+  int side = 1;  // the smallest cube holding `count`, at most 10 wide
+  while (side < 10 && side * side * side < count) ++side;
   bodies.push_back(ground(kPen + 4.0));
   const double h = 0.5 * kPen + 0.5;  // wall centres, 1 m thick walls just outside the pen
   bodies.push_back(staticBox("wall_x_neg", 1, kPen + 2, kWall, -h, 0, 0.5 * kWall));
@@ -186,7 +189,7 @@ ordered_json makeScene(const MakeOptions& o) {
   scene["gravity"] = {0.0, 0.0, -9.81};
   scene["dt"] = o.dt.value_or(1.0 / 60.0);
   scene["duration"] = o.duration.value_or(d.duration);
-  scene["contact"] = {{"tolerance", 1e-4}, {"restitution", 0.0}, {"friction", 0.5}};
+  scene["contact"] = {{"tolerance", collision::kDefaultContactTolerance}, {"restitution", 0.0}, {"friction", 0.5}};
   scene["bodies"] = bodies;
   return scene;
 }

@@ -19,18 +19,21 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
-// Two unit boxes side by side in one mesh: closed and locally convex, but two pieces.
-MeshData twoBoxes() {
-  MeshData m = makeBox(V3(1, 1, 1));
-  const MeshData second = makeBox(V3(1, 1, 1));
+// One mesh made of two copies of `piece`, the second 3 m along x: closed and locally
+// convex when the piece is, but not convex (two pieces).
+MeshData twoOf(const MeshData& piece) {
+  MeshData m = piece;
   const int shift = static_cast<int>(m.vertices.size());
-  for (const V3& v : second.vertices) m.vertices.push_back(v + V3(3, 0, 0));
-  for (std::vector<int> f : second.faces) {
+  for (const V3& v : piece.vertices) m.vertices.push_back(v + V3(3, 0, 0));
+  for (std::vector<int> f : piece.faces) {
     for (int& i : f) i += shift;
     m.faces.push_back(f);
   }
   return m;
 }
+
+// Two unit boxes side by side in one mesh.
+MeshData twoBoxes() { return twoOf(makeBox(V3(1, 1, 1))); }
 
 TEST(ConvexMesh, BoxesSpheresAndPrismsAreConvexCupsStaplesFloorsAndPairsAreNot) {
   EXPECT_TRUE(PolygonMesh(makeBox(V3(1, 2, 3))).convex());
@@ -122,17 +125,7 @@ TEST(SeparatingPlane, NeverClaimsApartWhatAScanOfVerticesDenies) {
 // locally convex, not convex, and with enough faces that its voxel grid is a real tree,
 // so its extent is bounded by branch and bound over the grid (the staple and the cup
 // above get no halvings and are scanned whole).
-MeshData twoSpheres() {
-  MeshData m = makeIcosphere(1.0, 3);
-  const MeshData second = makeIcosphere(1.0, 3);
-  const int shift = static_cast<int>(m.vertices.size());
-  for (const V3& v : second.vertices) m.vertices.push_back(v + V3(3, 0, 0));
-  for (std::vector<int> f : second.faces) {
-    for (int& i : f) i += shift;
-    m.faces.push_back(f);
-  }
-  return m;
-}
+MeshData twoSpheres() { return twoOf(makeIcosphere(1.0, 3)); }
 
 // The highest vertex level along d, by a scan of every vertex (object frame).
 double scannedTop(const ObjNode& object, const V3& d) {
