@@ -13,7 +13,6 @@
 #include "dynamics/settings.h"
 #include "sim/run.h"
 #include "sim/scene.h"
-#include "sim/step_log.h"
 #include "sim/world.h"
 
 namespace polysim::sim {
@@ -382,37 +381,6 @@ TEST(FailureModes, SceneStartingInterpenetratedIsAClearError) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("bodies \"box\" and \"ground\": interpenetrate at the start"), std::string::npos);
   }
-}
-
-TEST(StepLog, SameSceneTwiceGivesAnIdenticalLog) {
-  auto logOf = [](const std::string& name) {
-    World w(scene(name));
-    std::string all;
-    runFor(w, 1.0, [&](const StepReport& r) { all += stepToJson(w, r).dump() + "\n"; });
-    return all;
-  };
-  EXPECT_EQ(logOf("tilted_drop"), logOf("tilted_drop"));
-  EXPECT_EQ(logOf("pyramid"), logOf("pyramid"));
-}
-
-TEST(StepLog, EveryLineIsACompleteStepWithItsEvents) {
-  const std::string path = testing::TempDir() + "polysim_bounce.jsonl";
-  RunOptions options;
-  options.logPath = path;
-  options.duration = 1.0;
-  const nlohmann::ordered_json summary = runScene(scene("bounce"), options);
-  std::ifstream in(path);
-  std::string line;
-  long lines = 0, events = 0;
-  while (std::getline(in, line)) {
-    const auto j = nlohmann::json::parse(line);
-    ++lines;
-    ASSERT_EQ(j["step"].get<long>(), lines);
-    ASSERT_TRUE(j.contains("t") && j.contains("bodies") && j.contains("energy"));
-    events += static_cast<long>(j["events"].size());
-  }
-  EXPECT_EQ(lines, summary["steps"].get<long>());
-  EXPECT_GE(events, 2);  // the landing and at least one rebound
 }
 
 }  // namespace

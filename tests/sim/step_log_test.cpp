@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "sim/log_inspect.h"
 #include "sim/run.h"
+#include "sim/step_log.h"
+#include "sim/world.h"
 
 namespace polysim::sim {
 namespace {
@@ -190,6 +193,38 @@ TEST(StepLog, PolysimLogRejectsALineThatIsNotAStepNamingTheLine) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path + " line 2"), std::string::npos) << e.what();
   }
+}
+
+// The same scene twice gives byte-identical step lines.
+TEST(StepLog, SameSceneTwiceGivesAnIdenticalLog) {
+  auto logOf = [](const std::string& name) {
+    World w(loadScene(std::string(POLYSIM_SCENES_DIR) + "/" + name + ".json"));
+    std::string all;
+    for (long k = 0; k < std::lround(1.0 / w.scene().dt); ++k) all += stepToJson(w, w.step(w.scene().dt)).dump() + "\n";
+    return all;
+  };
+  EXPECT_EQ(logOf("tilted_drop"), logOf("tilted_drop"));
+  EXPECT_EQ(logOf("pyramid"), logOf("pyramid"));
+}
+
+TEST(StepLog, EveryLineIsACompleteStepWithItsEvents) {
+  const std::string path = testing::TempDir() + "polysim_bounce.jsonl";
+  RunOptions options;
+  options.logPath = path;
+  options.duration = 1.0;
+  const nlohmann::ordered_json summary = runScene(loadScene(std::string(POLYSIM_SCENES_DIR) + "/bounce.json"), options);
+  std::ifstream in(path);
+  std::string line;
+  long lines = 0, events = 0;
+  while (std::getline(in, line)) {
+    const auto j = nlohmann::json::parse(line);
+    ++lines;
+    ASSERT_EQ(j["step"].get<long>(), lines);
+    ASSERT_TRUE(j.contains("t") && j.contains("bodies") && j.contains("energy"));
+    events += static_cast<long>(j["events"].size());
+  }
+  EXPECT_EQ(lines, summary["steps"].get<long>());
+  EXPECT_GE(events, 2);  // the landing and at least one rebound
 }
 
 }  // namespace
