@@ -12,7 +12,6 @@ void AreaOnPatch::begin(const PolygonView& p) {
   corners_.clear();
   pieceEnd_.clear();
   pieceArea_.clear();
-  pieceGap_.clear();
   unsettled_.clear();
   firstFace_ = -1;
 }
@@ -39,8 +38,8 @@ AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
     if (std::abs(frame_.normal.dot(q.vertices[k] - frame_.origin)) > kPlanarityTolerance) return Outcome::OffPatch;
     q2_[k] = frame_.to2d(q.vertices[k]);
   }
-  double area = 0.0, gap = 0.0;
-  if (!isArea(eps, area, gap)) {
+  double area = 0.0;
+  if (!isArea(eps, area)) {
     unsettled_.push_back(q.faceId);
     return Outcome::Unsettled;
   }
@@ -48,54 +47,52 @@ AreaOnPatch::Outcome AreaOnPatch::add(const PolygonView& q, double eps) {
   corners_.insert(corners_.end(), piece_.begin(), piece_.end());
   pieceEnd_.push_back(static_cast<int>(corners_.size()));
   pieceArea_.push_back(area);
-  pieceGap_.push_back(gap);
   return Outcome::Area;
 }
 
-bool AreaOnPatch::isArea(double eps, double& area, double& meanGap) {
+bool AreaOnPatch::isArea(double eps, double& area) {
   clipConvex(q2_, p2_, piece_, work_);
   if (piece_.size() < 3) return false;
   // A piece is a convex part of p, so its perimeter is at most p's: most pieces are
   // judged without measuring their own.
   area = signedArea(piece_);
   if (area <= 0.5 * eps * perimeterP_ && area <= 0.5 * eps * perimeter(piece_)) return false;
-  double gapSum = 0.0;
   for (const Eigen::Vector2d& x : piece_) {
     double gap = 0.0;
     contactCorner(x, gap);
     if (std::abs(gap) > eps) return false;
-    gapSum += gap;
   }
-  meanGap = gapSum / static_cast<double>(piece_.size());
   return true;
 }
 
 bool AreaOnPatch::finish(std::vector<Contact>& out) const {
   if (pieceEnd_.empty()) return false;
-  double areaSum = 0.0, weightedGap = 0.0;
-  for (size_t i = 0; i < pieceArea_.size(); ++i) areaSum += pieceArea_[i], weightedGap += pieceArea_[i] * pieceGap_[i];
-  auto emit = [&](const Eigen::Vector2d* first, const Eigen::Vector2d* last, double separation) {
+  double areaSum = 0.0;
+  for (double a : pieceArea_) areaSum += a;
+  auto emit = [&](const Eigen::Vector2d* first, const Eigen::Vector2d* last) {
     Contact c;
     c.type = ContactType::Area;
     c.normal = frame_.normal;
-    c.separation = separation;
     c.featureA = {Feature::Kind::Face, p_.faceId};
     c.featureB = {Feature::Kind::Face, firstFace_};
     c.points.reserve(static_cast<size_t>(last - first));
-    double gap = 0.0;
-    for (const Eigen::Vector2d* x = first; x != last; ++x) c.points.push_back(contactCorner(*x, gap));
+    for (const Eigen::Vector2d* x = first; x != last; ++x) {
+      double gap = 0.0;
+      const Eigen::Vector3d corner = contactCorner(*x, gap);
+      c.addPoint(corner, gap);
+    }
     out.push_back(std::move(c));
   };
   // The pieces are disjoint parts of p (faces of one mesh do not overlap), so they cover
   // p exactly when their areas add up to p's; each corner of p is then a corner of some
   // piece, already checked to lie within the band.
   if (areaSum >= (1.0 - kCoverRoundOff) * signedArea(p2_)) {
-    emit(p2_.data(), p2_.data() + p2_.size(), weightedGap / areaSum);
+    emit(p2_.data(), p2_.data() + p2_.size());
     return true;
   }
   int begin = 0;
   for (size_t i = 0; i < pieceEnd_.size(); ++i) {
-    emit(corners_.data() + begin, corners_.data() + pieceEnd_[i], pieceGap_[i]);
+    emit(corners_.data() + begin, corners_.data() + pieceEnd_[i]);
     begin = pieceEnd_[i];
   }
   return false;

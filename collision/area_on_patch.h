@@ -34,8 +34,7 @@ class AreaOnPatch {
   /// pieces cover p (up to kCoverRoundOff of its area). Covered, the contact is p itself
   /// seen on the patch, and whatever the Unsettled faces have within eps of p lies on it:
   /// they add nothing. Otherwise every piece is appended, for the reduction to merge,
-  /// and the Unsettled faces must be tested on their own. Separation is the pieces' mean
-  /// gap weighted by area.
+  /// and the Unsettled faces must be tested on their own. Each corner has its own gap.
   bool finish(std::vector<Contact>& out) const;
   /// The faces that add() found Unsettled, in the order added.
   const std::vector<int>& unsettled() const { return unsettled_; }
@@ -45,8 +44,8 @@ class AreaOnPatch {
   // patch, moved halfway to p's plane: a corner of the contact polygon.
   Eigen::Vector3d contactCorner(const Eigen::Vector2d& x, double& gap) const;
   // Clips q2_ to p2_ into piece_; true when the piece is an area (add()'s rule), with its
-  // area (m^2) and the mean gap (m) at its corners.
-  bool isArea(double eps, double& area, double& meanGap);
+  // area (m^2).
+  bool isArea(double eps, double& area);
 
   PolygonView p_;
   PlaneFrame frame_{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ()};
@@ -57,7 +56,7 @@ class AreaOnPatch {
   Polygon2 q2_, piece_, work_;           // scratch
   std::vector<Eigen::Vector2d> corners_;  // every piece's corners, piece after piece
   std::vector<int> pieceEnd_;             // one past each piece's last corner
-  std::vector<double> pieceArea_, pieceGap_;
+  std::vector<double> pieceArea_;
   std::vector<int> unsettled_;
   int firstFace_ = -1;
 };

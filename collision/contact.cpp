@@ -1,6 +1,14 @@
 #include "collision/contact.h"
 
+#include <algorithm>
+
 namespace polysim::collision {
+
+void Contact::addPoint(const Eigen::Vector3d& x, double gap) {
+  separation = points.empty() ? gap : std::min(separation, gap);
+  points.push_back(x);
+  gaps.push_back(gap);
+}
 
 std::string toString(Status status) {
   switch (status) {

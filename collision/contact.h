@@ -29,10 +29,19 @@ struct Contact {
   /// Point: one point. Line: the segment's two end points. Area: the overlap polygon's
   /// vertices, counter-clockwise seen from the tip of `normal` (3 or more).
   std::vector<Eigen::Vector3d> points;
-  /// Distance (m) between the touching features along the normal: positive for a gap,
-  /// negative for an overlap, always within [-tolerance, tolerance].
+  /// Per point of `points`: the distance (m) between the touching features there, along
+  /// the normal; positive for a gap, negative for an overlap. A face tilted within the
+  /// band is deeper at some corners than at others, and the solver needs each corner's own.
+  std::vector<double> gaps;
+  /// The smallest of `gaps` (m): the deepest the features come; within [-tolerance,
+  /// tolerance].
   double separation = 0.0;
   Feature featureA, featureB;
+
+  /// Appends a point x with its gap; keeps `separation` the smallest gap.
+  void addPoint(const Eigen::Vector3d& x, double gap);
+  /// The gap at point i: gaps[i], or `separation` for a contact built without gaps.
+  double gapAt(size_t i) const { return i < gaps.size() ? gaps[i] : separation; }
 };
 
 /// The outcome for one pair of objects (indices into the database, a < b).

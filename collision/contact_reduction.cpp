@@ -1,5 +1,6 @@
 #include "collision/contact_reduction.h"
 
+#include <array>
 #include <cmath>
 
 #include "collision/clip.h"
@@ -9,13 +10,25 @@
 namespace polysim::collision {
 namespace {
 
-// Area pieces in one plane, as 2D polygons of that plane's frame.
+// Area pieces in one plane, as 2D polygons of that plane's frame, with every corner's
+// own 3D point and gap: a merged polygon's corners are corners of its pieces, and keep
+// where they were found (midway between the faces) and how deep.
 struct AreaCluster {
   PlaneFrame frame;
   std::vector<Polygon2> pieces;
   std::vector<double> areas;
-  double separationSum = 0.0, areaSum = 0.0;
+  std::vector<Eigen::Vector2d> corners2d;
+  std::vector<Eigen::Vector3d> corners3d;
+  std::vector<double> gaps;
   Feature featureA, featureB;
+
+  // The piece corner at x (2D): merging and simplifying only pick corners, never make them.
+  size_t cornerAt(const Eigen::Vector2d& x) const {
+    size_t best = 0;
+    for (size_t i = 1; i < corners2d.size(); ++i)
+      if ((corners2d[i] - x).squaredNorm() < (corners2d[best] - x).squaredNorm()) best = i;
+    return best;
+  }
 };
 
 // Merges pieces whose union is convex: the union of disjoint pieces is their hull exactly
@@ -86,7 +99,8 @@ double distanceToSegment(const Eigen::Vector3d& x, const Eigen::Vector3d& a, con
   return (a + t * d - x).norm();
 }
 
-// Joins line b into line a when they are collinear within eps and overlap or touch.
+// Joins line b into line a when they are collinear within eps and overlap or touch. The
+// joined line runs between the outermost of the four ends, each keeping its gap.
 bool joinCollinear(Contact& a, const Contact& b, double eps) {
   const Eigen::Vector3d origin = a.points[0], dir = (a.points[1] - a.points[0]).normalized();
   auto offLine = [&](const Eigen::Vector3d& x) { return (x - origin - dir.dot(x - origin) * dir).norm(); };
@@ -95,8 +109,21 @@ bool joinCollinear(Contact& a, const Contact& b, double eps) {
   const double b0 = dir.dot(b.points[0] - origin), b1 = dir.dot(b.points[1] - origin);
   const double lo = std::min(b0, b1), hi = std::max(b0, b1);
   if (lo > a1 + eps || hi < a0 - eps) return false;
-  const double newLo = std::min(a0, lo), newHi = std::max(a1, hi);
-  a.points = {origin + newLo * dir, origin + newHi * dir};
+  const std::array<std::pair<double, const Contact*>, 4> ends{{{a0, &a}, {a1, &a}, {b0, &b}, {b1, &b}}};
+  auto endOf = [&](size_t k) { return std::make_pair(ends[k].second->points[k % 2], ends[k].second->gapAt(k % 2)); };
+  size_t first = 0, last = 0;
+  for (size_t k = 1; k < ends.size(); ++k) {
+    if (ends[k].first < ends[first].first) first = k;
+    if (ends[k].first > ends[last].first) last = k;
+  }
+  const auto [p0, g0] = endOf(first);
+  const auto [p1, g1] = endOf(last);
+  Contact joined = a;
+  joined.points.clear();
+  joined.gaps.clear();
+  joined.addPoint(p0, g0);
+  joined.addPoint(p1, g1);
+  a = std::move(joined);
   return true;
 }
 
@@ -159,16 +186,19 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
           std::abs(k.frame.normal.dot(c.points[0] - k.frame.origin)) <= eps)
         home = &k;
     if (!home) {
-      clusters.push_back({PlaneFrame(c.points[0], c.normal), {}, {}, 0.0, 0.0, c.featureA, c.featureB});
+      clusters.push_back({PlaneFrame(c.points[0], c.normal), {}, {}, {}, {}, {}, c.featureA, c.featureB});
       home = &clusters.back();
     }
     Polygon2 poly;
-    for (const Eigen::Vector3d& x : c.points) poly.push_back(home->frame.to2d(x));
+    for (size_t i = 0; i < c.points.size(); ++i) {
+      poly.push_back(home->frame.to2d(c.points[i]));
+      home->corners2d.push_back(poly.back());
+      home->corners3d.push_back(c.points[i]);
+      home->gaps.push_back(c.gapAt(i));
+    }
     const double area = signedArea(poly);
     home->pieces.push_back(std::move(poly));
     home->areas.push_back(area);
-    home->areaSum += area;
-    home->separationSum += area * c.separation;
   }
 
   std::vector<AreaPolygon> areas;
@@ -178,10 +208,12 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
       Contact c;
       c.type = ContactType::Area;
       c.normal = k.frame.normal;
-      c.separation = k.separationSum / k.areaSum;
       c.featureA = k.featureA;
       c.featureB = k.featureB;
-      for (const Eigen::Vector2d& x : poly) c.points.push_back(k.frame.to3d(x));
+      for (const Eigen::Vector2d& x : poly) {
+        const size_t corner = k.cornerAt(x);
+        c.addPoint(k.corners3d[corner], k.gaps[corner]);
+      }
       out.push_back(std::move(c));
       areas.push_back({k.frame, std::move(poly)});
     }

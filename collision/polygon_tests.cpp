@@ -127,11 +127,11 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
   return std::min(cutDepth, behind);
 }
 
-Contact makeContact(ContactType type, const Eigen::Vector3d& normal, double separation, Feature a, Feature b) {
+// A contact without points yet (Contact::addPoint adds them with their gaps).
+Contact makeContact(ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b) {
   Contact c;
   c.type = type;
   c.normal = normal;
-  c.separation = separation;
   c.featureA = a;
   c.featureB = b;
   return c;
@@ -154,18 +154,15 @@ bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::ve
   // The gap at a corner x of the overlap (on q's plane) is how far p's plane lies above it
   // along q's normal.
   const double along = -p.plane.normal.dot(q.plane.normal);
-  double gapSum = 0.0;
-  Contact c = makeContact(ContactType::Area, q.plane.normal, 0.0, {Feature::Kind::Face, p.faceId},
+  Contact c = makeContact(ContactType::Area, q.plane.normal, {Feature::Kind::Face, p.faceId},
                           {Feature::Kind::Face, q.faceId});
   c.points.reserve(overlap.size());
   for (const Eigen::Vector2d& x2 : overlap) {
     const Eigen::Vector3d x = frame.to3d(x2);
     const double gap = p.plane.signedDistance(x) / along;
     if (std::abs(gap) > eps) return false;
-    gapSum += gap;
-    c.points.push_back(x + (0.5 * gap) * q.plane.normal);
+    c.addPoint(x + (0.5 * gap) * q.plane.normal, gap);  // midway between the planes
   }
-  c.separation = gapSum / static_cast<double>(overlap.size());
   out.push_back(std::move(c));
   return true;
 }
@@ -210,20 +207,25 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
         double offQ = isLine ? 0.0 : distanceToConvex(s.q2, at);
         if (offQ > eps) at = nearestPointToConvex(s.q2, a, b), offQ = distanceToConvex(s.q2, at);
         if (offQ <= eps) {
-          const double gap = 0.5 * (dP[i] + dP[j]);
-          const Eigen::Vector3d shift = (0.5 * gap) * q.plane.normal;
+          // The gap varies linearly along the edge; each point gets its own, midway.
+          const Eigen::Vector2d along = vj - vi;
+          auto addAt = [&](Contact& c, const Eigen::Vector2d& x) {
+            const double t = along.squaredNorm() > 0 ? std::clamp(along.dot(x - vi) / along.squaredNorm(), 0.0, 1.0) : 0.0;
+            const double gap = dP[i] + t * (dP[j] - dP[i]);
+            c.addPoint(frame.to3d(x) + (0.5 * gap) * q.plane.normal, gap);
+          };
           const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
-          Contact c = makeContact(isLine ? ContactType::Line : ContactType::Point, normal, gap, fa, fb);
-          if (isLine) c.points = {frame.to3d(a) + shift, frame.to3d(b) + shift};
-          else c.points = {frame.to3d(at) + shift};
+          Contact c = makeContact(isLine ? ContactType::Line : ContactType::Point, normal, fa, fb);
+          if (isLine) addAt(c, a), addAt(c, b);
+          else addAt(c, at);
           out.push_back(std::move(c));
         }
       }
     }
     if (!s.onLine[i] && distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {
       const auto [fa, fb] = features({Feature::Kind::Vertex, p.vertexIds[i]});
-      Contact c = makeContact(ContactType::Point, normal, dP[i], fa, fb);
-      c.points = {p.vertices[i] - (0.5 * dP[i]) * q.plane.normal};
+      Contact c = makeContact(ContactType::Point, normal, fa, fb);
+      c.addPoint(p.vertices[i] - (0.5 * dP[i]) * q.plane.normal, dP[i]);
       out.push_back(std::move(c));
     }
   }
@@ -256,8 +258,8 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
       const Eigen::Vector3d axis = u.cross(v);
       if (axis.norm() > kParallelSine * u.norm() * v.norm()) {
         const Eigen::Vector3d n = axis.dot(outward) >= 0 ? axis.normalized() : Eigen::Vector3d(-axis.normalized());
-        Contact c = makeContact(ContactType::Point, n, n.dot(cp.onFirst - cp.onSecond), fa, fb);
-        c.points = {0.5 * (cp.onFirst + cp.onSecond)};
+        Contact c = makeContact(ContactType::Point, n, fa, fb);
+        c.addPoint(0.5 * (cp.onFirst + cp.onSecond), n.dot(cp.onFirst - cp.onSecond));
         out.push_back(std::move(c));
         continue;
       }
@@ -269,12 +271,13 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
       const Eigen::Vector3d shift = -0.5 * n.dot(cp.onFirst - cp.onSecond) * n;  // onto the midline
       const double gap = n.dot(cp.onFirst - cp.onSecond);
       if ((hi - lo) * u.norm() > eps) {
-        Contact c = makeContact(ContactType::Line, n, gap, fa, fb);
-        c.points = {p0 + lo * u + shift, p0 + hi * u + shift};
+        Contact c = makeContact(ContactType::Line, n, fa, fb);
+        c.addPoint(p0 + lo * u + shift, gap);
+        c.addPoint(p0 + hi * u + shift, gap);
         out.push_back(std::move(c));
       } else {
-        Contact c = makeContact(ContactType::Point, n, gap, fa, fb);
-        c.points = {0.5 * (cp.onFirst + cp.onSecond)};
+        Contact c = makeContact(ContactType::Point, n, fa, fb);
+        c.addPoint(0.5 * (cp.onFirst + cp.onSecond), gap);
         out.push_back(std::move(c));
       }
     }

@@ -16,6 +16,7 @@ struct Row {
   Eigen::Vector3d point, normal, tangent1, tangent2;
   double normalMass = 0, tangentMass1 = 0, tangentMass2 = 0;  // kg: 1 / (J M^-1 J^T)
   double target = 0;                                          // m/s, least normal velocity
+  double separation = 0;                                      // m, as detected
   double restitution = 0;                                     // 0 unless the contact bounces
   double friction = 0;
   double normalImpulse = 0;                                   // accumulated, N s
@@ -85,9 +86,37 @@ void applyRestitution(std::vector<Row>& rows, double energyBefore) {
   setScale(std::clamp(alpha, 0.0, 1.0));
 }
 
+// Split impulses (Catto's pseudo velocities, as in Box2D v2 and Bullet): sequential
+// impulses on the push velocities alone, targets from the overlap beyond the allowed one.
+void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt) {
+  for (RigidBody* b : movingBodies(rows)) b->pushVelocity.setZero(), b->pushAngularVelocity.setZero();
+  std::vector<double> target(rows.size()), impulse(rows.size(), 0.0);
+  bool any = false;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    target[k] = std::max(0.0, -rows[k].separation - allowedOverlap) / dt;
+    any = any || target[k] > 0;
+  }
+  if (!any) return;
+  for (int sweep = 0; sweep < kMaxSolverIterations; ++sweep) {
+    double largestChange = 0.0;
+    for (size_t k = 0; k < rows.size(); ++k) {
+      Row& r = rows[k];
+      const double vn = r.normal.dot(r.a->pushVelocityAt(r.point) - r.b->pushVelocityAt(r.point));
+      const double old = impulse[k];
+      impulse[k] = std::max(0.0, old - r.normalMass * (vn - target[k]));
+      const Eigen::Vector3d J = (impulse[k] - old) * r.normal;
+      r.a->applyPushImpulse(J, r.point);
+      r.b->applyPushImpulse(-J, r.point);
+      largestChange = std::max(largestChange, std::abs(impulse[k] - old) * std::max(r.a->inverseMass, r.b->inverseMass));
+    }
+    if (largestChange < kPushVelocityTolerance) break;
+  }
+}
+
 }  // namespace
 
-SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt) {
+SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
+                         double allowedOverlap) {
   std::vector<Row> rows;
   rows.reserve(contacts.size());
   for (ContactPoint& c : contacts) {
@@ -99,6 +128,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     r.point = c.point;
     r.normal = c.normal;
     r.friction = c.friction;
+    r.separation = c.separation;
     r.normalMass = effectiveMass(r, r.normal);
     const double approach = r.normal.dot(relativeVelocity(r));
     if (approach < -kBounceThreshold) r.restitution = c.restitution;
@@ -157,6 +187,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     }
   }
   applyRestitution(rows, energyBefore);
+  solvePushes(rows, allowedOverlap, dt);
   for (Row& r : rows) {
     r.source->normalImpulse = r.normalImpulse;
     r.source->frictionImpulse = r.frictionImpulse;

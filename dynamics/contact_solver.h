@@ -42,6 +42,11 @@ struct SolveStats {
 /// contacts with zero friction skip all friction work.
 /// Starting from each contact's given impulses (warm start) lets a resting stack carry
 /// its weight from the first sweep; they are clamped to the same limits first.
-SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt);
+/// Then the push velocities of the bodies touched are set afresh (split impulses,
+/// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at
+/// (depth - allowedOverlap) / dt or more, no contact's push approaches, and push impulses
+/// are >= 0 and frictionless.
+SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
+                         double allowedOverlap = 0.0);
 
 }  // namespace polysim::dynamics

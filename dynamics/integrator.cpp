@@ -11,10 +11,12 @@ namespace {
 // The orientation and frame origin after time s along the step's path.
 void pathAfter(const RigidBody& body, double s, const Eigen::Vector3d& gravity, Eigen::Quaterniond& q,
                Eigen::Vector3d& origin) {
-  const double angle = body.angularVelocity.norm() * s;
+  const Eigen::Vector3d w = body.angularVelocity + body.pushAngularVelocity;
+  const double angle = w.norm() * s;
   q = body.orientation;
-  if (angle > 0) q = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, body.angularVelocity.normalized())) * q).normalized();
-  origin = body.centerOfMass() + body.velocity * s + (0.5 * s * s) * gravity - q * body.centerOfMassLocal;
+  if (angle > 0) q = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
+  origin = body.centerOfMass() + (body.velocity + body.pushVelocity) * s + (0.5 * s * s) * gravity -
+           q * body.centerOfMassLocal;
 }
 
 }  // namespace

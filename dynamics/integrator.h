@@ -19,7 +19,8 @@ namespace polysim::dynamics {
 void integrateVelocity(RigidBody& body, const Eigen::Vector3d& gravity, double dt);
 
 /// The pose the body reaches after time s (s in [0, dt]): centre of mass + v s + g s^2 / 2,
-/// orientation turned by |w| s about w. `gravity` is the acceleration along the path: zero
+/// orientation turned by |w| s about w, where v and w include the push velocities
+/// (rigid_body.h). `gravity` is the acceleration along the path: zero
 /// for a supported body (its velocity already has it), g for a free one. Static bodies
 /// stay put.
 Eigen::Isometry3d poseAfter(const RigidBody& body, double s, const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());

@@ -31,6 +31,12 @@ void RigidBody::applyImpulse(const Eigen::Vector3d& J, const Eigen::Vector3d& p)
   angularVelocity += inverseInertiaWorld() * (p - centerOfMass()).cross(J);
 }
 
+void RigidBody::applyPushImpulse(const Eigen::Vector3d& J, const Eigen::Vector3d& p) {
+  if (isStatic) return;
+  pushVelocity += inverseMass * J;
+  pushAngularVelocity += inverseInertiaWorld() * (p - centerOfMass()).cross(J);
+}
+
 bool atRest(const Eigen::Vector3d& velocity, const Eigen::Vector3d& angularVelocity, double size) {
   return velocity.norm() < kRestSpeed && angularVelocity.norm() * size < kRestSpeed;
 }

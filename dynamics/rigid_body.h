@@ -15,6 +15,12 @@ struct RigidBody {
   /// Velocity of the centre of mass (m/s) and angular velocity (rad/s), both world.
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();
+  /// Split-impulse velocities (m/s, rad/s, world): how fast the contact solver moves the
+  /// body out of an overlap deeper than it allows, over the time to the next contact
+  /// detection. They move the pose (integrator.h) but are no momentum: they carry no
+  /// kinetic energy and no bounce, and the solver sets them afresh at every solve.
+  Eigen::Vector3d pushVelocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d pushAngularVelocity = Eigen::Vector3d::Zero();
 
   Eigen::Vector3d centerOfMassLocal = Eigen::Vector3d::Zero();  // m, body frame
   double mass = 0.0;                                            // kg; 0 for static
@@ -36,6 +42,11 @@ struct RigidBody {
   }
   /// Applies impulse J (N s, world) at world point p.
   void applyImpulse(const Eigen::Vector3d& J, const Eigen::Vector3d& p);
+  /// The same for a push impulse: changes the push velocities only.
+  void applyPushImpulse(const Eigen::Vector3d& J, const Eigen::Vector3d& p);
+  Eigen::Vector3d pushVelocityAt(const Eigen::Vector3d& p) const {
+    return pushVelocity + pushAngularVelocity.cross(p - centerOfMass());
+  }
   /// Kinetic energy (J).
   double kineticEnergy() const;
   Eigen::Isometry3d pose() const;

@@ -13,6 +13,19 @@ inline constexpr int kMaxSolverIterations = 600;
 /// of this order, so it is set where 60 s of rest drift less than a micrometre.
 inline constexpr double kSolverVelocityTolerance = 1e-12;
 
+/// How deep (as a fraction of the contact tolerance) a contact may overlap before the
+/// solver pushes it back. Deeper contacts are pushed back to this depth over the time to
+/// the next detection by split impulses (rigid_body.h), which move poses without adding
+/// momentum. Bisection backs up to a state nearly a whole tolerance deep (it brackets the
+/// first interpenetrating time); left there, a resting contact sits on the band's edge and
+/// the least rocking interpenetrates at once, stalling the step at its start.
+inline constexpr double kAllowedOverlapFraction = 0.25;
+
+/// The push solve stops once no sweep changes a push velocity by more than this (m/s).
+/// Pushes correct positions at the scale of the tolerance (1e-4 m over a step of 1/60 s is
+/// 6e-3 m/s); an error of 1e-9 m/s moves a body by 1e-11 m per step.
+inline constexpr double kPushVelocityTolerance = 1e-9;
+
 /// Approach speeds (m/s) below this do not bounce: restitution applies only above it, so
 /// a resting body is not kicked by the speed gravity gives it in one step (g dt is
 /// 0.04 m/s at 240 Hz and 0.16 m/s at 60 Hz).

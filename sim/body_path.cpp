@@ -10,14 +10,17 @@ void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO) {
 }
 
 double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration, const Eigen::Vector3d& gravity) {
-  return duration * (body.velocity.norm() + 0.5 * gravity.norm() * duration + body.angularVelocity.norm() * radius);
+  const double speed = (body.velocity + body.pushVelocity).norm();
+  const double spin = (body.angularVelocity + body.pushAngularVelocity).norm();
+  return duration * (speed + 0.5 * gravity.norm() * duration + spin * radius);
 }
 
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
                          std::vector<dynamics::ContactPoint>& out) {
   for (const collision::Contact& c : contacts)
-    for (const Eigen::Vector3d& p : c.points)
-      out.push_back({a, b, p, c.normal, c.separation, material.restitution, material.friction});
+    for (size_t i = 0; i < c.points.size(); ++i) {
+      out.push_back({a, b, c.points[i], c.normal, c.gapAt(i), material.restitution, material.friction});
+    }
 }
 
 }  // namespace polysim::sim

@@ -21,7 +21,8 @@ struct BodyPath {
 void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO);
 
 /// How far any vertex can move along the path (m): |v| T + |g| T^2 / 2 + |w| T r, where
-/// `radius` is the body's farthest vertex from its centre of mass.
+/// `radius` is the body's farthest vertex from its centre of mass and v, w include the
+/// push velocities.
 double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration,
                        const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
 
@@ -32,8 +33,8 @@ struct PairMaterial {
 };
 
 /// The contact points of one pair of bodies (a, b: body indices): every vertex of an
-/// area's polygon, both ends of a line, a point; each with the contact's normal and
-/// separation.
+/// area's polygon, both ends of a line, a point; each with the contact's normal and its
+/// own gap.
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
                          std::vector<dynamics::ContactPoint>& out);
 

@@ -7,6 +7,7 @@
 #include "collision/broadphase.h"
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
+#include "dynamics/settings.h"
 #include "sim/islands.h"
 
 namespace polysim::sim {
@@ -40,6 +41,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
 const StepReport& World::step(double dt) {
   report_ = StepReport{report_.step + 1, 0.0, {}, false, 0.0, 0};
   std::fill(free_.begin(), free_.end(), 1);
+  for (dynamics::RigidBody& b : bodies_) b.pushVelocity.setZero(), b.pushAngularVelocity.setZero();  // set by this step's solves
   supportTouchingBodies(contacts_, dt);  // gravity into the velocities of bodies in contact; the others fly free
   resolveContacts(contacts_, dt, true);  // the contacts the step starts with (resting, stacked)
   std::vector<collision::PairResult> contactsAfter;
@@ -114,15 +116,27 @@ collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
   return islandDb_;
 }
 
+bool World::bounces(const collision::PairResult& pair) const {
+  const PairMaterial& a = materials_[pair.a];
+  const PairMaterial& b = materials_[pair.b];
+  if (std::max(a.restitution, b.restitution) <= 0) return false;
+  for (const collision::Contact& c : pair.contacts)
+    for (const Eigen::Vector3d& x : c.points)
+      if (c.normal.dot(bodies_[pair.a].velocityAt(x) - bodies_[pair.b].velocityAt(x)) < -dynamics::kBounceThreshold)
+        return true;
+  return false;
+}
+
 bool World::supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration) {
   bool any = false;
   for (const collision::PairResult& p : contacts)
-    for (int i : {p.a, p.b})
-      if (free_[i]) {
-        dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);  // nothing for a static body
-        free_[i] = 0;
-        any = any || !bodies_[i].isStatic;
-      }
+    if (!bounces(p))
+      for (int i : {p.a, p.b})
+        if (free_[i]) {
+          dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);  // nothing for a static body
+          free_[i] = 0;
+          any = any || !bodies_[i].isStatic;
+        }
   return any;
 }
 
@@ -150,7 +164,8 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
         p.frictionImpulse = old.frictionImpulse * horizon;
         break;
       }
-  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon).iterations;
+  const double allowedOverlap = dynamics::kAllowedOverlapFraction * db_.tolerance;
+  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap).iterations;
   if (!remember) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;
@@ -164,7 +179,8 @@ void World::predictMotion(const std::vector<int>& island, double duration) {
     collision::ObjNode& node = db_.objects[i];
     const dynamics::RigidBody& b = bodies_[i];
     const bool falling = free_[i] && !scene_.gravity.isZero(0.0);
-    const bool moving = falling || !b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0);
+    const bool moving = falling || !b.velocity.isZero(0.0) || !b.angularVelocity.isZero(0.0) ||
+                        !b.pushVelocity.isZero(0.0) || !b.pushAngularVelocity.isZero(0.0);
     node.ctrans = moving ? bodyPathPose : nullptr;  // a body at rest costs no update
     paths_[i].duration = duration;
     paths_[i].gravity = falling ? scene_.gravity : Eigen::Vector3d::Zero();

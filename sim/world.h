@@ -63,8 +63,13 @@ class World {
   /// Bodies touching something at this point of the step (in `contacts`) that were
   /// flying free get gravity for the next `duration` seconds into their velocity now and
   /// move in a straight line from here (semi-implicit Euler); the others keep flying their
-  /// exact parabola (dynamics/integrator.h). True when any body changed so.
+  /// exact parabola (dynamics/integrator.h). A pair about to bounce supports neither
+  /// body: it would bounce with a step's gravity more speed, and then fly free anyway.
+  /// True when any body changed so.
   bool supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration);
+  /// The pair has restitution and some contact point approaches faster than
+  /// kBounceThreshold: the solve will bounce it.
+  bool bounces(const collision::PairResult& pair) const;
   /// Solves `contacts` over `horizon` seconds. `remember`: keep the result as the forces
   /// the next solves warm-start from.
   void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember);

@@ -52,8 +52,8 @@ TEST(AreaOnPatch, FaceShortOfCoverByAThinStripGivesTheOverlap) {
 // Two halves of a floor, the right one raised by 0.4 tolerance: far more than a face may
 // be off its plane (kPlanarityTolerance), so the right half is no part of the left's patch,
 // but within the band, so the box between them rests on both in one area. Its bottom is
-// 0.2 tolerance above the left half (a quarter of the face) and 0.2 below the right: the
-// area-weighted separation is -0.1 tolerance, not the +0.2 of the left half's plane.
+// 0.2 tolerance above the left half (a quarter of the face) and 0.2 below the right: each
+// corner keeps its own gap, and the area's separation is the deeper, -0.2 tolerance.
 TEST(AreaOnPatch, StepWithinTheBandIsOneArea) {
   const double step = 0.4 * kEps;
   MeshData floor;
@@ -66,8 +66,11 @@ TEST(AreaOnPatch, StepWithinTheBandIsOneArea) {
   const Contact& area = pair.contacts[0];
   EXPECT_EQ(area.type, ContactType::Area);
   EXPECT_NEAR(polygonArea(area), 1.0, 1e-9);
-  EXPECT_NEAR(area.separation, -0.1 * kEps, 1e-12);
-  for (const V3& x : area.points) {
+  EXPECT_NEAR(area.separation, -0.2 * kEps, 1e-12);
+  ASSERT_EQ(area.gaps.size(), area.points.size());
+  for (size_t i = 0; i < area.points.size(); ++i) {
+    const V3& x = area.points[i];
+    EXPECT_NEAR(area.gaps[i], x.x() < 0 ? 0.2 * kEps : -0.2 * kEps, 1e-12) << x.transpose();
     EXPECT_GE(x.z(), -kEps);
     EXPECT_LE(x.z(), step + kEps);
   }

@@ -121,10 +121,13 @@ std::vector<Case> cases() {
       // A box on its edge, the edge tilted so that its ends lie 0.6 eps above and below
       // the floor: one line, the edge's length across, though the edge is not square to
       // the normal within eps (its ends differ by 1.2 eps: the cone's slack admits it).
+      // Each end of the line lies midway between the edge's end and the floor, so the line
+      // rises half as steeply as the edge.
       {"edge_dipping_through_the_band", kUnitBox, kFloorBox,
        pose(V3(r2 / 2 * std::sin(1.2 * kEps), 0, r2 / 2 * std::cos(1.2 * kEps)),
             rot(1.2 * kEps, V3::UnitY()) * rot(M_PI / 4, V3::UnitX())),
-       kFloorPose, true, Status::Contact, {{ContactType::Line, V3(0, 0, 1), std::cos(1.2 * kEps), V3(0, 0, 0)}}},
+       kFloorPose, true, Status::Contact,
+       {{ContactType::Line, V3(0, 0, 1), std::hypot(std::cos(1.2 * kEps), 0.5 * std::sin(1.2 * kEps)), V3(0, 0, 0)}}},
       {"aligned_side_by_side_touching", kUnitBox, kUnitBox, pose(V3(1, 0, 0)), pose(V3::Zero()), false,
        Status::Contact, {{ContactType::Area, V3(1, 0, 0), 1.0, V3(0.5, 0, 0)}}},
   };
