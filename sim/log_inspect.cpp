@@ -46,6 +46,8 @@ void rowsOfStep(const ordered_json& step, const LogQuery& q, std::vector<ordered
   row["penetration"] = figure("penetration");
   row["energy"] = figure("energy");
   row["solver_iterations"] = figure("solver_iterations");
+  row["islands"] = step.contains("island_events") ? ordered_json(step["island_events"].size()) : ordered_json(nullptr);
+  row["island_events"] = figure("island_events");
   if (q.body) {
     for (const ordered_json& b : step["bodies"])
       if (b["name"] == *q.body) {

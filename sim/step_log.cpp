@@ -26,6 +26,13 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) 
   line["t"] = forOutput(report.time);
   line["events"] = events;
   if (report.eventLimitHit) line["event_limit"] = true;
+  nlohmann::ordered_json islandBodies = nlohmann::ordered_json::array(), islandEvents = nlohmann::ordered_json::array();
+  for (const IslandReport& island : report.islands) {
+    islandBodies.push_back(island.bodies);
+    islandEvents.push_back(island.events);
+  }
+  line["island_bodies"] = islandBodies;
+  line["island_events"] = islandEvents;
   line["bodies"] = bodies;
   line["energy"] = forOutput(world.energy());
   line["penetration"] = forOutput(report.penetration);

@@ -39,7 +39,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
 }
 
 const StepReport& World::step(double dt) {
-  report_ = StepReport{report_.step + 1, 0.0, {}, false, 0.0, 0};
+  report_ = StepReport{report_.step + 1, 0.0, {}, {}, false, 0.0, 0};
   std::fill(free_.begin(), free_.end(), 1);
   for (dynamics::RigidBody& b : bodies_) b.pushVelocity.setZero(), b.pushAngularVelocity.setZero();  // set by this step's solves
   supportTouchingBodies(contacts_, dt);  // gravity into the velocities of bodies in contact; the others fly free
@@ -75,7 +75,8 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
   for (const collision::PairResult& p : contacts_)
     if (std::binary_search(island.begin(), island.end(), bodies_[p.a].isStatic ? p.b : p.a)) contacts.push_back(p);
   double remaining = dt;
-  for (int events = 0; remaining > 0;) {
+  report_.islands.push_back({static_cast<int>(island.size()), 0});
+  for (int& events = report_.islands.back().events; remaining > 0;) {
     predictMotion(island, remaining);                        // each body's path over the rest of the step
     collision::TocResult toc = detectCollisions(db);         // back up to the island's first contact, if any
     const double elapsed = toc.time * remaining;

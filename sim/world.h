@@ -31,11 +31,18 @@ struct StepEvent {
   collision::TocResult toc;
 };
 
+/// One island's share of a step (islands.h).
+struct IslandReport {
+  int bodies = 0;  // dynamic bodies in the island
+  int events = 0;  // contact events it stepped through
+};
+
 /// What happened in one step, for the step log.
 struct StepReport {
   long step = 0;
   double time = 0.0;  // s, at the step's end
   std::vector<StepEvent> events;
+  std::vector<IslandReport> islands;  // in the order they stepped
   bool eventLimitHit = false;
   double penetration = 0.0;  // m, deepest overlap among the committed states
   int solverIterations = 0;

@@ -168,6 +168,44 @@ TEST(StepLog, StepsAtTheEventBoundAreCountedAndTheirTestsSummed) {
   }
 }
 
+// Two boxes dropped 5 m apart from 1 m and 3 m: two islands of one body each in every
+// step, and each landing is an event of its own island, in the step where it lands
+// (sqrt(2 h / g) after the start). `polysim log` shows the same per step.
+TEST(StepLog, EachStepSaysHowManyIslandsSteppedAndTheirEvents) {
+  const std::string scenePath = testing::TempDir() + "polysim_two_drops.json";
+  std::ofstream(scenePath) << R"({"name": "two_drops", "gravity": [0, 0, -9.81], "dt": 0.016666666666666666,
+    "bodies": [
+      {"name": "floor", "static": true, "shape": {"type": "box", "size": [20, 20, 1]}, "position": [0, 0, -0.5]},
+      {"name": "low", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 1.5]},
+      {"name": "high", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [5, 0, 3.5]}]})";
+  const std::string logPath = testing::TempDir() + "polysim_two_drops.jsonl";
+  RunOptions options;
+  options.logPath = logPath;
+  options.duration = 1.0;
+  runScene(loadScene(scenePath), options);
+  std::vector<json> lines;
+  std::ifstream in(logPath);
+  for (std::string line; std::getline(in, line);) lines.push_back(json::parse(line));
+  std::ostringstream out;
+  inspectLog(logPath, {}, out);
+  const json rows = json::parse(out.str());
+  ASSERT_EQ(rows.size(), lines.size());
+  const double dt = 1.0 / 60, g = 9.81;
+  const long lowLands = static_cast<long>(std::ceil(std::sqrt(2 * 1.0 / g) / dt));
+  const long highLands = static_cast<long>(std::ceil(std::sqrt(2 * 3.0 / g) / dt));
+  for (size_t k = 0; k < lines.size(); ++k) {
+    const long step = static_cast<long>(k + 1);
+    const json& line = lines[k];
+    EXPECT_EQ(line["island_bodies"], json::array({1, 1})) << "step " << step;
+    ASSERT_EQ(line["island_events"].size(), 2u);
+    const int events = line["island_events"][0].get<int>() + line["island_events"][1].get<int>();
+    EXPECT_EQ(events, static_cast<int>(line["events"].size())) << "step " << step;
+    EXPECT_EQ(events, (step == lowLands) + (step == highLands)) << "step " << step;
+    EXPECT_EQ(rows[k]["islands"].get<int>(), 2);
+    EXPECT_EQ(rows[k]["island_events"], line["island_events"]);
+  }
+}
+
 // A figure missing from a line is shown as missing, not as a plausible zero.
 TEST(StepLog, PolysimLogShowsAMissingFigureAsNull) {
   const std::string path = testing::TempDir() + "polysim_step_log_missing.jsonl";
