@@ -219,21 +219,6 @@ bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::ve
   return true;
 }
 
-// The parameters [t0, t1] of the part of a segment within eps of a plane, given its ends'
-// levels d0 and d1 over the plane; false when no part is, or only a single point is.
-bool bandPart(double d0, double d1, double eps, double& t0, double& t1) {
-  if (d0 == d1) {
-    t0 = 0.0, t1 = 1.0;
-    return std::abs(d0) <= eps;
-  }
-  const double tLow = (-eps - d0) / (d1 - d0), tHigh = (eps - d0) / (d1 - d0);  // where the level is -eps, +eps
-  t0 = std::max(0.0, std::min(tLow, tHigh));
-  t1 = std::min(1.0, std::max(tLow, tHigh));
-  if (std::abs(d0) <= eps) t0 = 0.0;  // exact ends, not round-off of the division
-  if (std::abs(d1) <= eps) t1 = 1.0;
-  return t0 < t1;
-}
-
 // Edges and vertices of `p` lying within eps of face `q` (lines and points), with the
 // normal `normal` (from B towards A). `pIsA` tells which object p belongs to.
 void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q, double eps, bool pIsA,
@@ -254,23 +239,18 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
   s.onLine.assign(p.size, 0);
   for (int i = 0; i < p.size; ++i) {
     const int j = (i + 1) % p.size;
-    // Edge i lies along q's plane when its ends' levels differ by at most the band's
-    // width; the part of it within the band is the whole edge, or a part when the edge
-    // dips out of the band beyond q's boundary (a slab's edge longer than the face it
-    // leans on, deeper than eps where it passes q's side).
-    double t0 = 0.0, t1 = 1.0;
-    if (std::abs(dP[j] - dP[i]) <= 2 * eps && bandPart(dP[i], dP[j], eps, t0, t1)) {
+    if (std::abs(dP[i]) > eps) continue;
+    if (std::abs(dP[j]) <= eps) {  // edge i lies along q's plane
       // Within eps of q decides contact; the reported segment is the part over q itself
       // (the grown clip would add eps-long stubs at q's corners).
       const Eigen::Vector2d vi = frame.to2d(p.vertices[i]), vj = frame.to2d(p.vertices[j]);
-      const Eigen::Vector2d ei = vi + t0 * (vj - vi), ej = vi + t1 * (vj - vi);
-      Eigen::Vector2d a = ei, b = ej, a0 = ei, b0 = ej;
+      Eigen::Vector2d a = vi, b = vj, a0 = vi, b0 = vj;
       if (clipSegment(s.q2, eps, a, b)) {
         const bool isLine = clipSegment(s.q2, 0.0, a0, b0) && (b0 - a0).norm() > eps;
         if (isLine) {
           // A vertex the clip kept lies over q: the line's end is its contact.
-          s.onLine[i] = s.onLine[i] || (t0 == 0.0 && a0 == vi);
-          s.onLine[j] = t1 == 1.0 && b0 == vj;
+          s.onLine[i] = s.onLine[i] || a0 == vi;
+          s.onLine[j] = b0 == vj;
           a = a0, b = b0;
         }
         // The grown clip overshoots q's sharp corners (by eps over the sine of half the
@@ -282,8 +262,8 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
           // The gap varies linearly along the edge; each point gets its own, midway.
           const Eigen::Vector2d along = vj - vi;
           auto addAt = [&](Contact& c, const Eigen::Vector2d& x) {
-            const double t = along.squaredNorm() > 0 ? std::clamp(along.dot(x - vi) / along.squaredNorm(), t0, t1) : 0.0;
-            const double gap = std::clamp(dP[i] + t * (dP[j] - dP[i]), -eps, eps);
+            const double t = along.squaredNorm() > 0 ? std::clamp(along.dot(x - vi) / along.squaredNorm(), 0.0, 1.0) : 0.0;
+            const double gap = dP[i] + t * (dP[j] - dP[i]);
             c.addPoint(frame.to3d(x) + (0.5 * gap) * q.plane.normal, gap);
           };
           const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
@@ -294,7 +274,6 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
         }
       }
     }
-    if (std::abs(dP[i]) > eps) continue;
     if (!s.onLine[i] && distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {
       const auto [fa, fb] = features({Feature::Kind::Vertex, p.vertexIds[i]});
       Contact c = makeContact(ContactType::Point, normal, fa, fb);

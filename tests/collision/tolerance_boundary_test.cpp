@@ -204,39 +204,6 @@ TEST(ToleranceBoundary, EdgeAgainstALeaningFaceIsMeasuredAtItsDepth) {
     }
 }
 
-// A wedge's edge longer than the floor it lies across, sloping so that it is 0.9375 eps
-// deep where it passes the floor's side and 1.25 eps deep at its end beyond: the part over
-// the floor is one line, from the end on the floor (gap 0) to the floor's side, with the
-// gap there. The edge used to need both its ends within the band to count as a line, and
-// left the solver only a point at one end.
-TEST(ToleranceBoundary, EdgeDippingOutOfTheBandBeyondTheFaceIsALineOverIt) {
-  const double drop = 0.625 * kEps;  // per unit of x: the edge runs from (-1, 0, 0) to (1, 0, -2 drop)
-  MeshData wedge;
-  wedge.vertices = {V3(-1, 0, 0), V3(1, 0, -2 * drop), V3(-1, 1, 1), V3(1, 1, 1), V3(-1, -1, 1), V3(1, -1, 1)};
-  wedge.faces = {{2, 3, 1}, {2, 1, 0}, {1, 5, 4}, {1, 4, 0}, {4, 5, 3, 2}, {4, 2, 0}, {3, 5, 1}};
-  MeshData floor = makeBox(V3(4.5, 8, 1));  // x in [-4, 0.5], top at z = 0
-  for (bool swapped : {false, true}) {
-    SCOPED_TRACE(swapped ? "swapped" : "in order");
-    ObjectDatabase db;
-    db.tolerance = kEps;
-    if (swapped) db.add("floor", std::make_shared<PolygonMesh>(floor), pose(V3(-1.75, 0, -0.5)), true);
-    db.add("wedge", std::make_shared<PolygonMesh>(wedge), Eigen::Isometry3d::Identity(), false);
-    if (!swapped) db.add("floor", std::make_shared<PolygonMesh>(floor), pose(V3(-1.75, 0, -0.5)), true);
-    const IntersectionResult r = test4Intersection(db);
-    ASSERT_EQ(toString(r.status), "contact");
-    ASSERT_EQ(r.pairs.size(), 1u);
-    ASSERT_EQ(r.pairs[0].contacts.size(), 1u);
-    const Contact& line = r.pairs[0].contacts[0];
-    ASSERT_EQ(line.type, ContactType::Line);
-    EXPECT_EQ(line.separation, -1.5 * drop);
-    for (size_t k = 0; k < 2; ++k) {
-      const double x = line.points[k].x();
-      EXPECT_TRUE(x == -1.0 || x == 0.5) << x;
-      EXPECT_EQ(line.gaps[k], -drop * (1 + x));
-    }
-  }
-}
-
 // A floor of two squares, the right one a quarter tolerance lower: they are not one flat
 // patch, so the box's face is judged against the second square on its own (not as part
 // of the first one's patch). With the box's bottom 3/4 eps above the left square it is
