@@ -72,58 +72,6 @@ double maxOfMinOfLines(const std::vector<std::pair<double, double>>& lines) {
   return best;
 }
 
-// The plane of the face across q's side k, when that edge is convex (the face folds
-// down behind q): a bound on how deep a point near the edge lies inside q's object.
-// edgeOutward is the unit bisector b of the two faces' normals, so the neighbour's
-// normal is q's reflected about it, 2 (b . n) b - n.
-bool neighbourPlane(const PolygonView& q, int k, Plane& plane) {
-  if (q.edgeFlat[k]) return false;
-  const Eigen::Vector3d& b = q.edgeOutward[k];
-  const Eigen::Vector3d m = 2.0 * b.dot(q.plane.normal) * b - q.plane.normal;
-  if (m.dot(q.sideNormal[k]) <= kParallelSine) return false;  // a boundary or concave edge bounds nothing
-  plane.normal = m;
-  plane.offset = m.dot(q.vertices[k]);
-  return true;
-}
-
-// The deepest point of the region in s.clipB (p behind q, inside q's grown prism) inside
-// q's object near q: a point's depth is the smaller of how far it lies behind q's plane
-// and behind the plane of each convex neighbour face. `behind` is the largest of the
-// first over the region. A point behind q's plane but beside a sharp edge is not deep
-// inside the object; judged from q's plane alone, an edge leaning on a steep face (a
-// domino on the next) would seem deeper than it is by the band's width times the tangent
-// of its lean. Exact where no neighbour binds; otherwise found by halving the depth
-// until the region deeper than it is empty, to round-off of `behind`.
-double deepestUnderNeighbours(const PolygonView& q, double behind, PolygonScratch& s) {
-  if (behind <= 0.0 || s.clipB.empty()) return behind;
-  s.neighbours.clear();
-  for (int k = 0; k < q.size; ++k) {
-    Plane plane;
-    if (!neighbourPlane(q, k, plane)) continue;
-    bool binds = false;
-    for (const Eigen::Vector3d& x : s.clipB) binds = binds || -plane.signedDistance(x) < behind;
-    if (binds) s.neighbours.push_back(plane);
-  }
-  if (s.neighbours.empty()) return behind;
-  s.region = s.clipB;
-  auto deeperThan = [&](double depth) {
-    s.clipA = s.region;
-    clipBelow(s.clipA, q.plane.normal, q.plane.offset - depth, s.clipB);
-    for (const Plane& plane : s.neighbours) {
-      if (s.clipB.empty()) break;
-      s.clipA.swap(s.clipB);
-      clipBelow(s.clipA, plane.normal, plane.offset - depth, s.clipB);
-    }
-    return !s.clipB.empty();
-  };
-  double lo = 0.0, hi = behind;
-  for (int halving = 0; halving < kDepthHalvings; ++halving) {
-    const double mid = 0.5 * (lo + hi);
-    (deeperThan(mid) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 // How far (m) polygon p goes inside q's object, judged from q alone: the smaller of the
 // depth of p behind q's plane within q's prism (grown by eps) and the depth of p's cut
 // through q's plane inside q, measured from q's edges that are not flat. A caller that
@@ -176,7 +124,7 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
   }
   double behind = 0.0;
   for (const Eigen::Vector3d& x : s.clipB) behind = std::max(behind, -q.plane.signedDistance(x));
-  return std::min(cutDepth, deepestUnderNeighbours(q, behind, s));
+  return std::min(cutDepth, behind);
 }
 
 // A contact without points yet (Contact::addPoint adds them with their gaps).

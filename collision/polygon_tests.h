@@ -26,8 +26,7 @@ struct PolygonView {
 /// Scratch buffers reused between calls, so that the hot loop does not allocate.
 struct PolygonScratch {
   std::vector<double> dP, dQ;
-  std::vector<Eigen::Vector3d> clipA, clipB, region;
-  std::vector<Plane> neighbours;                 // planes of a face's convex neighbours
+  std::vector<Eigen::Vector3d> clipA, clipB;
   Polygon2 p2, q2, overlap, clipWork;
   std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge
   std::vector<Contact> discard;                  // contacts found when none are wanted

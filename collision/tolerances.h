@@ -81,11 +81,6 @@ inline constexpr double kFacesPerVoxel = 32.0;
 /// and 4; curved shapes go over and are measured polygon by polygon instead.
 inline constexpr int kMaxSeparatingDirections = 16;
 
-/// Halvings of the depth interval when a polygon's depth inside an object is bounded by
-/// the faces beside the one it is behind (polygon_tests.cpp): resolves the depth to
-/// 2^-40 of the depth behind the face's plane, round-off at any scale a contact has.
-inline constexpr int kDepthHalvings = 40;
-
 /// collisionDetect() stops refining the time of contact when the bracket is narrower
 /// than this fraction of the interval: far below any physical time scale of a step,
 /// well above the round-off of t in [0, 1].
