@@ -112,7 +112,7 @@ MeshData apexDownPyramid() {
 MeshData edgeDownWedge() {
   MeshData m;
   m.vertices = {V3(-1, 0, 0), V3(1, 0, 0), V3(-1, 1, 1), V3(1, 1, 1), V3(-1, -1, 1), V3(1, -1, 1)};
-  m.faces = {{0, 1, 3, 2}, {0, 4, 5, 1}, {2, 3, 5, 4}, {0, 2, 4}, {1, 5, 3}};
+  m.faces = {{2, 3, 1, 0}, {1, 5, 4, 0}, {4, 5, 3, 2}, {4, 2, 0}, {3, 5, 1}};  // outward: counter-clockwise seen from outside
   return m;
 }
 
