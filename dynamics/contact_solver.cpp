@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dynamics/settings.h"
+#include "dynamics/small_lcp.h"
 
 namespace polysim::dynamics {
 namespace {
@@ -36,6 +37,18 @@ double effectiveMass(const Row& r, const Eigen::Vector3d& n) {
   return k > 0 ? 1.0 / k : 0.0;
 }
 
+// How much a unit impulse along row j's normal at its point changes row i's normal
+// velocity (both rows between the same two bodies): the block's coupling matrix entry.
+double coupling(const Row& i, const Row& j) {
+  double k = (i.a->inverseMass + i.b->inverseMass) * i.normal.dot(j.normal);
+  for (const RigidBody* body : {i.a, i.b}) {
+    if (body->isStatic) continue;
+    const Eigen::Vector3d c = body->centerOfMass();
+    k += (i.point - c).cross(i.normal).dot(body->inverseInertiaWorld() * (j.point - c).cross(j.normal));
+  }
+  return k;
+}
+
 void applyPair(Row& r, const Eigen::Vector3d& J) {
   r.a->applyImpulse(J, r.point);
   r.b->applyImpulse(-J, r.point);
@@ -54,6 +67,84 @@ double kineticEnergy(const std::vector<RigidBody*>& bodies) {
   double e = 0.0;
   for (const RigidBody* b : bodies) e += b->kineticEnergy();
   return e;
+}
+
+// The rows of each contact, in the order their first rows come: an area's corners or a
+// line's ends are one block; a point, or a contact larger than kMaxBlockSize, one per row.
+std::vector<std::vector<int>> blocksOf(const std::vector<Row>& rows) {
+  std::vector<std::vector<int>> blocks;
+  std::vector<std::pair<int, size_t>> open;  // manifold id -> its block
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const int id = rows[k].source->manifold;
+    auto found = std::find_if(open.begin(), open.end(), [id](const auto& o) { return o.first == id; });
+    if (id < 0 || found == open.end()) {
+      if (id >= 0) open.emplace_back(id, blocks.size());
+      blocks.push_back({static_cast<int>(k)});
+    } else {
+      blocks[found->second].push_back(static_cast<int>(k));
+    }
+  }
+  std::vector<std::vector<int>> split;
+  for (std::vector<int>& b : blocks) {
+    if (static_cast<int>(b.size()) <= kMaxBlockSize) split.push_back(std::move(b));
+    else for (int k : b) split.push_back({k});
+  }
+  return split;
+}
+
+// One row's friction impulse, clamped to the disk of its current normal impulse (no
+// work for a frictionless row). Returns the change over the lighter body's mass (m/s).
+double solveFrictionRow(Row& r) {
+  if (r.friction <= 0) return 0.0;
+  const Eigen::Vector3d v = relativeVelocity(r);
+  const Eigen::Vector2d old = r.frictionImpulse;
+  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * r.tangent1.dot(v), r.tangentMass2 * r.tangent2.dot(v));
+  const double limit = r.friction * r.normalImpulse;
+  if (wanted.norm() > limit) wanted *= limit / wanted.norm();
+  r.frictionImpulse = wanted;
+  const Eigen::Vector2d d = wanted - old;
+  applyPair(r, d.x() * r.tangent1 + d.y() * r.tangent2);
+  return d.norm() * std::max(r.a->inverseMass, r.b->inverseMass);
+}
+
+// One row's normal impulse, as sequential impulses: the change that brings its normal
+// velocity to its target, clamped so that the accumulated impulse stays >= 0.
+double solveNormalRow(Row& r) {
+  const double vn = r.normal.dot(relativeVelocity(r));
+  const double old = r.normalImpulse;
+  r.normalImpulse = std::max(0.0, old - r.normalMass * (vn - r.target));
+  applyPair(r, (r.normalImpulse - old) * r.normal);
+  return std::abs(r.normalImpulse - old) * std::max(r.a->inverseMass, r.b->inverseMass);
+}
+
+// A block's normal impulses solved together: the accumulated impulses x >= 0 with normal
+// velocities >= their targets and complementary. Falls back to row by row when the
+// small problem has no solution (round-off at a degenerate manifold).
+double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block) {
+  const int n = static_cast<int>(block.size());
+  if (n == 1) return solveNormalRow(rows[block[0]]);
+  Eigen::MatrixXd A(n, n);
+  Eigen::VectorXd b(n), old(n);
+  for (int i = 0; i < n; ++i) {
+    const Row& ri = rows[block[i]];
+    old(i) = ri.normalImpulse;
+    b(i) = ri.normal.dot(relativeVelocity(ri)) - ri.target;
+    for (int j = 0; j < n; ++j) A(i, j) = coupling(ri, rows[block[j]]);
+  }
+  b -= A * old;
+  const std::optional<Eigen::VectorXd> x = solveSmallLcp(A, b);
+  double change = 0.0;
+  if (!x) {
+    for (int k : block) change = std::max(change, solveNormalRow(rows[k]));
+    return change;
+  }
+  for (int i = 0; i < n; ++i) {
+    Row& r = rows[block[i]];
+    r.normalImpulse = (*x)(i);
+    applyPair(r, (r.normalImpulse - old(i)) * r.normal);
+    change = std::max(change, std::abs(r.normalImpulse - old(i)) * std::max(r.a->inverseMass, r.b->inverseMass));
+  }
+  return change;
 }
 
 // Poisson restitution: each bouncing contact pushes apart again with e times the impulse
@@ -157,29 +248,13 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     applyPair(r, r.normalImpulse * r.normal + r.frictionImpulse.x() * r.tangent1 + r.frictionImpulse.y() * r.tangent2);
   }
   SolveStats stats;
+  const std::vector<std::vector<int>> blocks = blocksOf(rows);
   while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
-    for (Row& r : rows) {
-      const double lighter = std::max(r.a->inverseMass, r.b->inverseMass);
-      if (r.friction > 0) {
-        // Friction first, clamped to the disk of the current normal impulse.
-        const Eigen::Vector3d v = relativeVelocity(r);
-        const Eigen::Vector2d old = r.frictionImpulse;
-        Eigen::Vector2d wanted =
-            old - Eigen::Vector2d(r.tangentMass1 * r.tangent1.dot(v), r.tangentMass2 * r.tangent2.dot(v));
-        const double limit = r.friction * r.normalImpulse;
-        if (wanted.norm() > limit) wanted *= limit / wanted.norm();
-        r.frictionImpulse = wanted;
-        const Eigen::Vector2d d = wanted - old;
-        applyPair(r, d.x() * r.tangent1 + d.y() * r.tangent2);
-        largestChange = std::max(largestChange, d.norm() * lighter);
-      }
-      const double vn = r.normal.dot(relativeVelocity(r));
-      const double old = r.normalImpulse;
-      r.normalImpulse = std::max(0.0, old - r.normalMass * (vn - r.target));
-      applyPair(r, (r.normalImpulse - old) * r.normal);
-      largestChange = std::max(largestChange, std::abs(r.normalImpulse - old) * lighter);
+    for (const std::vector<int>& block : blocks) {
+      for (int k : block) largestChange = std::max(largestChange, solveFrictionRow(rows[k]));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, block));
     }
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;

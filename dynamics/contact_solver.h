@@ -1,7 +1,8 @@
 #pragma once
 // Contact response by impulses: sequential impulses with accumulated, clamped normal and
 // friction impulses (Catto, "Iterative Dynamics with Temporal Coherence", 2005), solved
-// for all contacts together.
+// for all contacts together, the normal impulses of one contact's points (an area's
+// corners) as one block (small_lcp.h).
 
 #include <Eigen/Core>
 #include <vector>
@@ -18,6 +19,9 @@ struct ContactPoint {
   double separation = 0.0;                             // m: gap (> 0) or overlap (< 0)
   double restitution = 0.0;                            // the pair's coefficient
   double friction = 0.0;                               // the pair's Coulomb coefficient
+  /// Points of one contact (an area's corners, a line's ends) share an id, and their
+  /// normal impulses are solved together as one block (small_lcp.h); -1: on its own.
+  int manifold = -1;
   /// In: the impulses to start from (warm start, e.g. last step's for the same point);
   /// out: the accumulated impulses solved (N s). Friction along (t1, t2), t1 =
   /// normal.unitOrthogonal(), t2 = normal x t1.

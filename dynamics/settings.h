@@ -4,8 +4,8 @@
 namespace polysim::dynamics {
 
 /// Most sweeps of the contact solver over its contacts in one solve. Stacks converge
-/// slowest (error shrinks by a roughly constant factor per sweep); 200 holds a
-/// 20-box stack (see the stack scenes).
+/// slowest; with block solving a resting 20-box stack takes 45 sweeps a step on average
+/// (a cold start takes all of them, the warm-started steps after it few).
 inline constexpr int kMaxSolverIterations = 600;
 
 /// The solver stops once no sweep changes any accumulated impulse by more than this
@@ -25,6 +25,11 @@ inline constexpr double kAllowedOverlapFraction = 0.25;
 /// Pushes correct positions at the scale of the tolerance (1e-4 m over a step of 1/60 s is
 /// 6e-3 m/s); an error of 1e-9 m/s moves a body by 1e-11 m per step.
 inline constexpr double kPushVelocityTolerance = 1e-9;
+
+/// Relative round-off allowed in the small complementarity problems of block solving
+/// (small_lcp.h): residuals are judged against this fraction of the problem's largest
+/// coefficient. Far above double round-off, far below any physical impulse ratio.
+inline constexpr double kLcpRoundOff = 1e-9;
 
 /// Approach speeds (m/s) below this do not bounce: restitution applies only above it, so
 /// a resting body is not kicked by the speed gravity gives it in one step (g dt is

@@ -17,10 +17,11 @@ double pathMotionBound(const dynamics::RigidBody& body, double radius, double du
 
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
                          std::vector<dynamics::ContactPoint>& out) {
-  for (const collision::Contact& c : contacts)
-    for (size_t i = 0; i < c.points.size(); ++i) {
-      out.push_back({a, b, c.points[i], c.normal, c.gapAt(i), material.restitution, material.friction});
-    }
+  for (const collision::Contact& c : contacts) {
+    const int manifold = static_cast<int>(out.size());  // unique: the index of its first point
+    for (size_t i = 0; i < c.points.size(); ++i)
+      out.push_back({a, b, c.points[i], c.normal, c.gapAt(i), material.restitution, material.friction, manifold});
+  }
 }
 
 }  // namespace polysim::sim
