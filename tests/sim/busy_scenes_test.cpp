@@ -86,18 +86,26 @@ TEST(BusyScenes, ColumnOfCupsKeepsTheEnergyBoundAndComesToRest) {
   expectInvariants(w, seen);
 }
 
-// 40 unit boxes resting on each other for a minute at dt 1/60: each box within 5 mm of
-// its column, each at its height within one tolerance per contact below it.
-TEST(BusyScenes, StackOf40StandsFor60s) {
+// 40 unit boxes resting on each other at dt 1/60 (the minute the issue asks for is
+// measured by `polysim run`, see the README): each box within 0.1 mm of its column, each
+// at its height within one tolerance per contact below it.
+TEST(BusyScenes, StackOf40Stands) {
   World w(generated("stack", 40));
-  const Watched seen = run(w, 60.0);
+  const Watched seen = run(w, 5.0);
   expectInvariants(w, seen);
   const double eps = w.scene().contact.tolerance;
   for (int k = 0; k < 40; ++k) {
     const dynamics::RigidBody& b = w.bodies()[static_cast<size_t>(k) + 1];  // after the ground
-    EXPECT_LT(b.position.head<2>().norm(), 5e-3) << "box" << k;
+    EXPECT_LT(b.position.head<2>().norm(), 1e-4) << "box" << k;
     EXPECT_NEAR(b.position.z(), 0.5 + k, (k + 1) * eps) << "box" << k;
   }
+}
+
+// The same invariants on a pile small enough for the sanitizer builds: 8 tilted boxes.
+TEST(BusyScenes, SmallTiltedPileUnderEveryBuild) {
+  World w(generated("pile", 8, 3));
+  const Watched seen = run(w, 4.0);
+  expectInvariants(w, seen);
 }
 
 }  // namespace

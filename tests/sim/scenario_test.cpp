@@ -95,8 +95,8 @@ void expectStackStands(const std::string& name, int boxes, double drift) {
 }
 
 TEST(Scenarios, StackOf5StandsFor60s) { expectStackStands("stack_5", 5, 1e-3); }
-TEST(Scenarios, StackOf10StandsFor60s) { expectStackStands("stack_10", 10, 5e-3); }
-TEST(Scenarios, StackOf20StandsFor60s) { expectStackStands("stack_20", 20, 2e-2); }
+TEST(Scenarios, StackOf10StandsFor60s) { expectStackStands("stack_10", 10, 1e-3); }
+TEST(Scenarios, StackOf20StandsFor60s) { expectStackStands("stack_20", 20, 1e-3); }
 // The same five boxes given as polygon meshes: polysim sees the same polygons.
 TEST(Scenarios, StackOf5MeshBoxesStandsFor60s) { expectStackStands("stack_5_meshes", 5, 1e-3); }
 
