@@ -316,8 +316,7 @@ TEST(FailureModes, BoxBouncingWithRestitution09ComesToRestWithoutStalling) {
   runFor(w, 20.0, [&](const StepReport& r) {
     limitSteps += r.eventLimitHit;
     for (const StepEvent& event : r.events) impacts.push_back(event.time);
-    // A step may end with the box already within the band of the floor; its next step
-    // then starts with the contact and bounces there, with no event.
+    // A step ending within the band bounces at the next step's start, with no event.
     const double rising = w.bodies()[box].velocity.z();
     if (r.events.empty() && fallingAt < 0 && rising > 0) impacts.push_back(r.time - w.scene().dt);
     fallingAt = rising;
