@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "dynamics/settings.h"
 #include "dynamics/small_lcp.h"
@@ -73,16 +74,12 @@ double kineticEnergy(const std::vector<RigidBody*>& bodies) {
 // line's ends are one block; a point, or a contact larger than kMaxBlockSize, one per row.
 std::vector<std::vector<int>> blocksOf(const std::vector<Row>& rows) {
   std::vector<std::vector<int>> blocks;
-  std::vector<std::pair<int, size_t>> open;  // manifold id -> its block
+  std::unordered_map<int, size_t> blockOf;  // manifold id -> its block
   for (size_t k = 0; k < rows.size(); ++k) {
     const int id = rows[k].source->manifold;
-    auto found = std::find_if(open.begin(), open.end(), [id](const auto& o) { return o.first == id; });
-    if (id < 0 || found == open.end()) {
-      if (id >= 0) open.emplace_back(id, blocks.size());
-      blocks.push_back({static_cast<int>(k)});
-    } else {
-      blocks[found->second].push_back(static_cast<int>(k));
-    }
+    const auto [at, fresh] = blockOf.try_emplace(id, blocks.size());
+    if (id < 0 || fresh) blocks.push_back({static_cast<int>(k)});
+    else blocks[at->second].push_back(static_cast<int>(k));
   }
   std::vector<std::vector<int>> split;
   for (std::vector<int>& b : blocks) {
