@@ -116,14 +116,12 @@ bool joinCollinear(Contact& a, const Contact& b, double eps) {
     if (ends[k].first < ends[first].first) first = k;
     if (ends[k].first > ends[last].first) last = k;
   }
-  const auto [p0, g0] = endOf(first);
+  const auto [p0, g0] = endOf(first);  // copies: a's own ends are about to be replaced
   const auto [p1, g1] = endOf(last);
-  Contact joined = a;
-  joined.points.clear();
-  joined.gaps.clear();
-  joined.addPoint(p0, g0);
-  joined.addPoint(p1, g1);
-  a = std::move(joined);
+  a.points.clear();
+  a.gaps.clear();
+  a.addPoint(p0, g0);
+  a.addPoint(p1, g1);
   return true;
 }
 

@@ -24,12 +24,16 @@ nlohmann::ordered_json bodyStateToJson(const std::string& name, const Eigen::Vec
 }
 
 nlohmann::ordered_json toJson(const collision::Contact& c) {
-  nlohmann::ordered_json points = nlohmann::ordered_json::array();
-  for (const Eigen::Vector3d& p : c.points) points.push_back(toJson(p));
+  nlohmann::ordered_json points = nlohmann::ordered_json::array(), gaps = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < c.points.size(); ++i) {
+    points.push_back(toJson(c.points[i]));
+    gaps.push_back(forOutput(c.gapAt(i)));
+  }
   return {{"type", collision::toString(c.type)},
           {"normal", toJson(c.normal)},
           {"points", points},
-          {"separation", forOutput(c.separation)}};
+          {"separation", forOutput(c.separation)},
+          {"gaps", gaps}};
 }
 
 nlohmann::ordered_json pairsToJson(const std::vector<collision::PairResult>& pairs, const std::vector<std::string>& names) {

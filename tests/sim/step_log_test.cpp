@@ -66,6 +66,11 @@ TEST(StepLog, EveryLineHoldsSpecFieldsAndTheLogAgreesWithTheSummary) {
         for (const json& c : p["contacts"]) {
           EXPECT_TRUE(c["type"] == "point" || c["type"] == "line" || c["type"] == "area") << c.dump();
           EXPECT_EQ(c["normal"].size(), 3u);
+          // One gap per point, the separation the smallest of them.
+          ASSERT_EQ(c["gaps"].size(), c["points"].size()) << c.dump();
+          double smallest = c["gaps"][0].get<double>();
+          for (const json& g : c["gaps"]) smallest = std::min(smallest, g.get<double>());
+          EXPECT_EQ(c["separation"].get<double>(), smallest) << c.dump();
         }
     }
   }
