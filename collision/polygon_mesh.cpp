@@ -1,5 +1,7 @@
 #include "collision/polygon_mesh.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -136,6 +138,19 @@ std::vector<std::string> validateMesh(const MeshData& data, bool mustBeClosed) {
       break;
     }
   }
+  if (!problems.empty()) return problems;
+  // A closed surface wound clockwise seen from outside is inside-out: its normals point
+  // into the solid, and every contact with it would be judged from the wrong side. Its
+  // signed volume (divergence theorem over the faces' fans) is then negative.
+  const bool closed = std::all_of(directed.begin(), directed.end(),
+                                  [&directed](const auto& e) { return directed.count({e.first.second, e.first.first}) > 0; });
+  double sixVolume = 0.0;
+  for (const auto& face : data.faces)
+    for (size_t i = 1; i + 1 < face.size(); ++i)
+      sixVolume += data.vertices[face[0]].dot(data.vertices[face[i]].cross(data.vertices[face[i + 1]]));
+  if (closed && sixVolume < 0.0)
+    problems.push_back("is inside-out: its faces are wound clockwise seen from outside (list each face's vertices "
+                       "counter-clockwise seen from outside the solid)");
   return problems;
 }
 

@@ -33,7 +33,8 @@ struct MeshData {
 /// Every problem with `data` as a polygon mesh, one readable sentence each ("face 3 is
 /// not planar (vertex 7 is 0.02 off its plane)"); empty when the mesh is valid. With
 /// `mustBeClosed`, a mesh whose edges are not each shared by exactly two faces with
-/// opposite directions is rejected too (a dynamic body needs a closed surface).
+/// opposite directions is rejected too (a dynamic body needs a closed surface). A closed
+/// surface wound clockwise seen from outside (inside-out) is rejected either way.
 std::vector<std::string> validateMesh(const MeshData& data, bool mustBeClosed);
 
 /// An immutable, validated polygon mesh with its derived data: face planes, unique

@@ -237,7 +237,7 @@ BodySpec readBody(const json& bodyJson, size_t index, const std::filesystem::pat
     fields.problem("missing field \"shape\"");
   } else if (readShape(bodyJson.at("shape"), body, sceneDir, problems, where) && !body.isStatic) {
     const auto props = dynamics::computeMassProperties(body.mesh.vertices, body.mesh.faces, 1.0);
-    if (props.volume <= 0) fields.problem("shape: the mesh is inside out (its faces are listed clockwise seen from outside)");
+    if (props.volume <= 0) fields.problem("shape: the mesh encloses no volume");  // inside-out ones are refused above
   }
   return body;
 }

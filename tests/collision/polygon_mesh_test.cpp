@@ -72,6 +72,17 @@ TEST(PolygonMesh, RejectsEachKindOfBadFace) {
   EXPECT_TRUE(mentions(validateMesh(flipped, false), "runs the same way"));
 }
 
+// Every face of a closed mesh wound the wrong way round: consistent, closed, and
+// inside-out. Its normals would point into the solid, so it is refused.
+TEST(PolygonMesh, RejectsAnInsideOutClosedMesh) {
+  MeshData inside = makeBox(V3(1, 2, 3));
+  EXPECT_TRUE(validateMesh(inside, true).empty());
+  for (auto& face : inside.faces) std::reverse(face.begin(), face.end());
+  EXPECT_TRUE(mentions(validateMesh(inside, true), "is inside-out"));
+  EXPECT_TRUE(mentions(validateMesh(inside, false), "is inside-out"));
+  EXPECT_THROW(PolygonMesh{inside}, std::invalid_argument);
+}
+
 TEST(PolygonMesh, RejectsNonConvexFaces) {
   MeshData arrow;  // a planar but concave quadrilateral (a dart)
   arrow.vertices = {V3(0, 0, 0), V3(2, 1, 0), V3(0, 2, 0), V3(0.5, 1, 0)};

@@ -129,7 +129,11 @@ INSTANTIATE_TEST_SUITE_P(
         Rejection{"open_mesh_on_dynamic_body", SceneFiles::withBody(cubeWith(R"([[0,2,3,1],[4,5,7,6],[0,1,5,4],[2,6,7,3],[0,4,6,2]])")),
                   "body \"box\": shape: is not closed"},
         Rejection{"inside_out_mesh", SceneFiles::withBody(cubeWith(R"([[1,3,2,0],[6,7,5,4],[4,5,1,0],[3,7,6,2],[2,6,4,0],[5,7,3,1]])")),
-                  "inside out"},
+                  "body \"box\": shape: is inside-out"},
+        Rejection{"inside_out_static_mesh",
+                  SceneFiles::withBody(cubeWith(R"([[1,3,2,0],[6,7,5,4],[4,5,1,0],[3,7,6,2],[2,6,4,0],[5,7,3,1]])") +
+                                       R"(, "static": true)"),
+                  "body \"box\": shape: is inside-out"},
         Rejection{"missing_obj_file", SceneFiles::withBody(R"("shape": {"type": "obj", "file": "nowhere.obj"})"),
                   "body \"box\": shape: cannot read"},
         Rejection{"interpenetrating_at_start", SceneFiles::withBody(R"("shape": {"type": "box", "size": [1,1,1]}, "position": [0, 0, 0.3])"),
