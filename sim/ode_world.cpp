@@ -131,8 +131,13 @@ void OdeWorld::nearCallback(void* self, dGeomID g1, dGeomID g2) {
 void OdeWorld::step(double dt) {
   deepest_ = 0.0;
   dSpaceCollide(space_, this, &nearCallback);
+  // QuickStep shuffles its rows with ODE's one global random generator: each world keeps
+  // its own seed, so that a run's figures do not depend on what ran before it in the
+  // process (the serial sweep and a planned run of one setting must agree).
+  dRandSetSeed(randomSeed_);
   if (settings_.quickStep) dWorldQuickStep(world_, dt);
   else dWorldStep(world_, dt);
+  randomSeed_ = dRandGetSeed();
   dJointGroupEmpty(contactJoints_);
   time_ += dt;
 }

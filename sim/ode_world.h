@@ -73,6 +73,7 @@ class OdeWorld : public Engine {
   double deepest_ = 0.0;
   std::optional<double> firstContact_;
   long messagesBefore_ = 0;
+  unsigned long randomSeed_ = 0;  // ODE's generator, saved between steps (step())
 };
 
 /// ODE geoms of the scene's bodies without a world: ODE's collision test alone, for
