@@ -2,11 +2,24 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 
 #include "sim/json_output.h"
 
 namespace polysim::sim {
+namespace {
+
+// s of CPU time used by the calling thread (POSIX: the process's clock would also count
+// other threads, wall time also counts other processes).
+double threadCpuSeconds() {
+  constexpr double kSecondsPerNanosecond = 1e-9;
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + kSecondsPerNanosecond * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
 
 double RunRecord::drift(size_t i) const {
   const Eigen::Vector3d moved = final[i].position - initial[i].position;
@@ -22,6 +35,7 @@ RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d
   r.initialEnergy = engine.energy();
   r.apexAfterFirstContact.assign(r.initial.size(), std::numeric_limits<double>::quiet_NaN());
   const auto start = std::chrono::steady_clock::now();
+  const double cpuStart = threadCpuSeconds();
   for (long k = 0; k < steps; ++k) {
     engine.step(dt);
     r.maxEnergyIncrease = std::max(r.maxEnergyIncrease, engine.energy() - r.initialEnergy);
@@ -36,6 +50,7 @@ RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d
     if (afterStep) afterStep();
   }
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.cpuTime = threadCpuSeconds() - cpuStart;
   r.simTime = steps * dt;
   r.firstContactTime = engine.firstContactTime();
   r.finalEnergy = engine.energy();
@@ -55,6 +70,7 @@ nlohmann::ordered_json summaryToJson(const std::string& sceneName, const RunReco
   summary["steps"] = r.steps;
   summary["sim_time"] = forOutput(r.simTime);
   summary["wall_time_s"] = r.wallTime;
+  summary["cpu_time_s"] = r.cpuTime;
   summary["first_contact_time"] =
       r.firstContactTime ? nlohmann::ordered_json(forOutput(*r.firstContactTime)) : nlohmann::ordered_json(nullptr);
   summary["max_penetration"] = forOutput(r.maxPenetration);

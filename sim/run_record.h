@@ -15,6 +15,9 @@ struct RunRecord {
   long steps = 0;
   double simTime = 0.0;   // s
   double wallTime = 0.0;  // s, stepping only (building the scene is not counted)
+  /// s, the stepping thread's CPU time over the same span: unlike the wall time it does
+  /// not grow when other runs share the machine's cores (the sweep's cost figure).
+  double cpuTime = 0.0;
   std::optional<double> firstContactTime;  // s
   double maxPenetration = 0.0;             // m, deepest overlap in any step
   double initialEnergy = 0.0, finalEnergy = 0.0, maxEnergyIncrease = 0.0;  // J
