@@ -1,6 +1,7 @@
 #include "sim/commands.h"
 
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "collision/time_of_contact.h"
@@ -11,6 +12,8 @@
 #include "sim/scene.h"
 #include "sim/scene_generators.h"
 #include "sim/sweep.h"
+#include "sim/sweep_csv.h"
+#include "sim/sweep_plan.h"
 #include "sim/whole_file.h"
 
 namespace polysim::sim {
@@ -84,6 +87,33 @@ int sweepCommand(const SweepOptions& options, const std::string& outPath, std::o
   }
   writeWholeFile(outPath, "the sweep's CSV", [&](std::ostream& file) { writeSweepCsv(runSweep(options, progress), file); });
   return 0;
+}
+
+int sweepPlanCommand(const SweepOptions& options, const std::string& planPath, const std::string& resultsDirectory,
+                     const std::string& binary) {
+  std::ostringstream plan;  // every check (the results folder) before the file is written
+  writeSweepPlan(options, resultsDirectory, binary, plan);
+  writeWholeFile(planPath, "the sweep's plan", [&](std::ostream& file) { file << plan.str(); });
+  return 0;
+}
+
+int sweepRunCommand(const SweepOptions& options, const SweepRun& run, const std::string& outPath, std::ostream& note) {
+  if (runPlannedSweepRun(options.scenesDirectory, run, outPath) == PlannedRunOutcome::kKept)
+    note << outPath << ": kept, it already holds this run's rows\n";
+  return 0;
+}
+
+int sweepMergeCommand(const std::string& resultsDirectory, bool quick, const std::string& outPath, std::ostream& out,
+                      std::ostream& report) {
+  const SweepMerge merge = mergeSweep(resultsDirectory, quick);
+  if (outPath.empty())
+    writeSweepCsv(merge.rows, out);
+  else
+    writeWholeFile(outPath, "the sweep's CSV", [&](std::ostream& file) { writeSweepCsv(merge.rows, file); });
+  if (merge.notMerged.empty()) return 0;
+  report << resultsDirectory << ": merged " << merge.merged << " of " << merge.runs << " runs; not merged:\n";
+  for (const std::string& line : merge.notMerged) report << "  " << line << "\n";
+  return 1;
 }
 
 int makeCommand(const MakeOptions& options, const std::string& outPath, std::ostream& out) {

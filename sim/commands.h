@@ -31,6 +31,23 @@ int compareCommand(const std::string& scenePath, const struct RunOptions& option
 int sweepCommand(const struct SweepOptions& options, const std::string& outPath, std::ostream& out,
                  std::ostream* progress);
 
+/// `polysim sweep [--scenes DIR] [--quick] --plan FILE [--results DIR]`: the sweep as a job
+/// list (sweep_plan.h), written whole to FILE; runs nothing. `binary` is the polysim the
+/// lines call.
+int sweepPlanCommand(const struct SweepOptions& options, const std::string& planPath, const std::string& resultsDirectory,
+                     const std::string& binary);
+
+/// `polysim sweep [--scenes DIR] [--quick] --case SCENE --engine E --solver S --parameter P
+/// --dt S --out FILE`: one planned run. Says on `note` when FILE already held its rows.
+int sweepRunCommand(const struct SweepOptions& options, const struct SweepRun& run, const std::string& outPath,
+                    std::ostream& note);
+
+/// `polysim sweep [--quick] --merge DIR [--out FILE]`: the runs' rows as the sweep's CSV, to
+/// FILE (whole) or `out`; `report` names each run not merged. Returns 1 when a run was
+/// not merged (the CSV then holds the others), else 0.
+int sweepMergeCommand(const std::string& resultsDirectory, bool quick, const std::string& outPath, std::ostream& out,
+                      std::ostream& report);
+
 /// `polysim make KIND [--count N] [--seed S] [--tilt RAD] [--dt S] [--duration S] [--out
 /// FILE]`: a generated scene (scene_generators.h), to FILE (written whole or not at all)
 /// or to `out`. The same options give the same bytes.

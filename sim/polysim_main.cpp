@@ -1,6 +1,7 @@
 // The polysim executable: parses the command line and hands over to sim/commands.
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include "sim/scene.h"
 #include "sim/scene_generators.h"
 #include "sim/sweep.h"
+#include "sim/sweep_plan.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"polysim: rigid bodies with polygon-level contact, compared against ODE"};
@@ -74,6 +76,18 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   sweep->add_flag("--quick", sweepOptions.quick, "two steps, one setting per solver, short runs");
   sweep->add_option("--out", sweepOut, "CSV file (default: standard output)");
+  std::string sweepPlan, sweepResults = "sweep_runs", sweepMerge, sweepCase, sweepEngine, sweepSolver;
+  double sweepParameter = 0.0, sweepDt = 0.0;
+  CLI::Option* plan = sweep->add_option("--plan", sweepPlan, "write the sweep as a job list to this file; runs nothing");
+  sweep->add_option("--results", sweepResults, "folder the plan's runs write their rows to")->capture_default_str()->needs(plan);
+  CLI::Option* merge = sweep->add_option("--merge", sweepMerge, "merge a plan's results folder into the CSV")->excludes(plan);
+  CLI::Option* oneCase = sweep->add_option("--case", sweepCase, "run one run of a plan: this scene of the sweep")
+                             ->excludes(plan)
+                             ->excludes(merge);
+  sweep->add_option("--engine", sweepEngine, "one run: polysim or ode")->needs(oneCase);
+  sweep->add_option("--solver", sweepSolver, "one run: bisection, regula-falsi, worldstep or quickstep")->needs(oneCase);
+  sweep->add_option("--parameter", sweepParameter, "one run: tolerance (m) or iterations")->needs(oneCase);
+  sweep->add_option("--dt", sweepDt, "one run: the step (s)")->needs(oneCase);
 
   polysim::sim::MakeOptions makeOptions;
   std::string makeOut;
@@ -113,7 +127,20 @@ int main(int argc, char** argv) {
       polysim::sim::inspectLog(logFile, logQuery, std::cout);
       return 0;
     }
-    if (sweep->parsed()) return polysim::sim::sweepCommand(sweepOptions, sweepOut, std::cout, isatty(STDERR_FILENO) ? &std::cerr : nullptr);
+    if (sweep->parsed()) {
+      if (!sweepPlan.empty())
+        return polysim::sim::sweepPlanCommand(sweepOptions, sweepPlan, sweepResults,
+                                              std::filesystem::canonical("/proc/self/exe").string());
+      if (!sweepMerge.empty())
+        return polysim::sim::sweepMergeCommand(sweepMerge, sweepOptions.quick, sweepOut, std::cout, std::cerr);
+      if (!sweepCase.empty()) {
+        if (sweepOut.empty()) throw std::invalid_argument("--out: one run of a plan needs the file its rows go to");
+        const polysim::sim::SweepRun one{polysim::sim::standardSweepCase(sweepCase, sweepOptions.quick),
+                                         polysim::sim::sweepSettingFrom(sweepEngine, sweepSolver, sweepParameter, sweepDt)};
+        return polysim::sim::sweepRunCommand(sweepOptions, one, sweepOut, std::cerr);
+      }
+      return polysim::sim::sweepCommand(sweepOptions, sweepOut, std::cout, isatty(STDERR_FILENO) ? &std::cerr : nullptr);
+    }
     if (toc->parsed()) return polysim::sim::tocCommand(scene, interval, method, std::cout);
     if (make->parsed()) {
       if (makeCount > 0) makeOptions.count = makeCount;

@@ -1,9 +1,8 @@
 #include "sim/sweep.h"
 
 #include <cmath>
-#include <iomanip>
-#include <limits>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "sim/analytic_reference.h"
@@ -88,35 +87,55 @@ std::vector<SweepSetting> sweepSettings(bool quick) {
   return settings;
 }
 
-std::vector<SweepRow> runSweep(const SweepOptions& options, std::ostream* progress) {
+const SweepCase& standardSweepCase(const std::string& scene, bool quick) {
+  static const std::vector<SweepCase> full = standardSweepCases(false), short_ = standardSweepCases(true);
+  for (const SweepCase& c : quick ? short_ : full)
+    if (c.scene == scene) return c;
+  throw std::invalid_argument("the " + std::string(quick ? "quick " : "") + "sweep has no case \"" + scene + "\"");
+}
+
+std::vector<SweepRun> sweepRuns(bool quick) {
+  std::vector<SweepRun> runs;
+  for (const SweepCase& c : standardSweepCases(quick))
+    for (const SweepSetting& s : sweepSettings(quick)) runs.push_back({c, s});
+  return runs;
+}
+
+std::string sweepRunName(const SweepRun& run) {
+  const SweepSetting& s = run.setting;
+  std::ostringstream name;
+  name << run.sweepCase.scene << "." << s.engine << "." << s.solver << "." << s.parameterName << "=" << s.parameter
+       << ".dt=" << s.dt;  // 6 significant digits tell the sweep's steps and parameters apart
+  return name.str();
+}
+
+std::vector<SweepRow> runSweepRun(const std::string& scenesDirectory, const SweepRun& run, std::ostream* progress) {
+  const SweepCase& c = run.sweepCase;
+  const SweepSetting& s = run.setting;
+  const Scene scene = loadScene(scenesDirectory + "/" + c.scene + ".json");
+  long warnings = 0;
+  const RunRecord record = runOnce(scene, c, s, warnings);
+  if (progress)
+    *progress << c.scene << " " << s.engine << " " << s.solver << " " << s.parameterName << "=" << s.parameter
+              << " dt=" << s.dt << ": " << record.wallTime << " s" << (warnings ? ", ODE warnings: " : "")
+              << (warnings ? std::to_string(warnings) : "") << "\n";
   std::vector<SweepRow> rows;
-  for (const SweepCase& c : standardSweepCases(options.quick)) {
-    const Scene scene = loadScene(options.scenesDirectory + "/" + c.scene + ".json");
-    for (const SweepSetting& s : sweepSettings(options.quick)) {
-      long warnings = 0;
-      const RunRecord record = runOnce(scene, c, s, warnings);
-      if (progress)
-        *progress << c.scene << " " << s.engine << " " << s.solver << " " << s.parameterName << "=" << s.parameter
-                  << " dt=" << s.dt << ": " << record.wallTime << " s" << (warnings ? ", ODE warnings: " : "")
-                  << (warnings ? std::to_string(warnings) : "") << "\n";
-      for (const std::string& metric : c.metrics) {
-        const Figure f = measure(metric, c, scene, record);
-        rows.push_back({c.scene, s, record.wallTime, record.wallTime / record.simTime, metric, f.measured, f.analytic,
-                        std::abs(f.measured - f.analytic), warnings});
-      }
-    }
+  for (const std::string& metric : c.metrics) {
+    const Figure f = measure(metric, c, scene, record);
+    rows.push_back({c.scene, s, record.wallTime, record.wallTime / record.simTime, record.cpuTime,
+                    record.cpuTime / record.simTime, metric, f.measured, f.analytic, std::abs(f.measured - f.analytic),
+                    warnings});
   }
   return rows;
 }
 
-void writeSweepCsv(const std::vector<SweepRow>& rows, std::ostream& out) {
-  out << "scene,engine,solver,parameter_name,parameter,dt,wall_s,cost_s_per_s,metric,measured,analytic,error,"
-         "solver_warnings\n";
-  out << std::setprecision(std::numeric_limits<double>::max_digits10);
-  for (const SweepRow& r : rows)
-    out << r.scene << "," << r.setting.engine << "," << r.setting.solver << "," << r.setting.parameterName << ","
-        << r.setting.parameter << "," << r.setting.dt << "," << r.wallTime << "," << r.cost << "," << r.metric << ","
-        << r.measured << "," << r.analytic << "," << r.error << "," << r.solverWarnings << "\n";
+std::vector<SweepRow> runSweep(const SweepOptions& options, std::ostream* progress) {
+  std::vector<SweepRow> rows;
+  for (const SweepRun& run : sweepRuns(options.quick)) {
+    std::vector<SweepRow> runRows = runSweepRun(options.scenesDirectory, run, progress);
+    rows.insert(rows.end(), runRows.begin(), runRows.end());
+  }
+  return rows;
 }
 
 }  // namespace polysim::sim

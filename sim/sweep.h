@@ -1,7 +1,9 @@
 #pragma once
 // `polysim sweep`: the standard scenes run by both engines over their settings, each run
-// scored for cost (wall time per simulated second) and for error against the analytic
-// answer (analytic_reference.h). The rows feed the speed-versus-accuracy chart.
+// scored for cost (CPU and wall time per simulated second) and for error against the
+// analytic answer (analytic_reference.h). The rows feed the speed-versus-accuracy chart.
+// A sweep is a list of independent runs (sweepRuns); sweep_plan.h hands them out as
+// separate command lines.
 
 #include <iosfwd>
 #include <string>
@@ -35,6 +37,8 @@ struct SweepRow {
   SweepSetting setting;
   double wallTime = 0.0;  // s
   double cost = 0.0;      // s of wall time per simulated second
+  double cpuTime = 0.0;   // s, the stepping thread's CPU time (RunRecord::cpuTime)
+  double cpuCost = 0.0;   // s of CPU time per simulated second
   std::string metric;
   double measured = 0.0, analytic = 0.0, error = 0.0;  // error = |measured - analytic|
   long solverWarnings = 0;  // ODE's warnings in the run (OdeMessageLog); 0 for polysim
@@ -50,12 +54,29 @@ struct SweepOptions {
 std::vector<SweepCase> standardSweepCases(bool quick);
 std::vector<SweepSetting> sweepSettings(bool quick);
 
-/// Runs every case under every setting. `progress` (when given) gets one line per run.
-std::vector<SweepRow> runSweep(const SweepOptions& options, std::ostream* progress = nullptr);
+/// Throws std::invalid_argument naming the case when the standard set has none of that name.
+const SweepCase& standardSweepCase(const std::string& scene, bool quick);
 
-/// CSV with a header: scene, engine, solver, parameter_name, parameter, dt, wall_s,
-/// cost_s_per_s, metric, measured, analytic, error, solver_warnings. Numbers at full
-/// precision.
-void writeSweepCsv(const std::vector<SweepRow>& rows, std::ostream& out);
+/// One run of the sweep: a case under a setting.
+struct SweepRun {
+  SweepCase sweepCase;
+  SweepSetting setting;
+};
+
+/// Every case under every setting, case by case: the sweep's runs in its CSV's order.
+std::vector<SweepRun> sweepRuns(bool quick);
+
+/// A name for the run made of its case and setting (no spaces, no slashes), e.g.
+/// "drop_box.polysim.bisection.tolerance_m=0.0001.dt=0.0166667": the file name of its
+/// result in a planned sweep. Distinct runs of one sweep have distinct names.
+std::string sweepRunName(const SweepRun& run);
+
+/// Runs one run on the case's scene from `scenesDirectory`: a row per measure of the case.
+/// `progress` (when given) gets one line.
+std::vector<SweepRow> runSweepRun(const std::string& scenesDirectory, const SweepRun& run,
+                                  std::ostream* progress = nullptr);
+
+/// Runs every run of the sweep, in order. `progress` (when given) gets one line per run.
+std::vector<SweepRow> runSweep(const SweepOptions& options, std::ostream* progress = nullptr);
 
 }  // namespace polysim::sim

@@ -14,6 +14,7 @@
 #include "sim/ode_baseline.h"
 #include "sim/run.h"
 #include "sim/scene.h"
+#include "sim/sweep_csv.h"
 
 namespace polysim::sim {
 namespace {
@@ -107,7 +108,7 @@ TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
   EXPECT_EQ(line.rfind("scene,engine,solver,", 0), 0u);
   size_t count = 0;
   for (; std::getline(lines, line); ++count) {
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 12) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 14) << line;
     EXPECT_EQ(line.find(",,"), std::string::npos) << "an empty field: " << line;
     EXPECT_EQ(line.find("nan"), std::string::npos) << line;
     EXPECT_EQ(line.find("inf"), std::string::npos) << line;
