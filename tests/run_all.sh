@@ -14,6 +14,7 @@ cmake --build build-sanitize -j2
 # The 60-second stack scenarios run about 25 times slower under the sanitizers (the
 # 20-box stack alone would take 16 minutes); they run in the optimized pass above, and
 # the stack code paths are exercised here by the pyramid and the ODE stack comparison.
-# The chart test is Python drawing the quick sweep, which Sweep.* already runs here.
+# The chart test is Python drawing the quick sweep, which Sweep.* already runs here; the
+# Slurm test starts daemons around the same planned runs that the GNU parallel test runs here.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^BusyScenes\.(Tilted|Column|StackOf40)'
+  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|StackOf40)'
