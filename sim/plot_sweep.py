@@ -3,8 +3,9 @@
 
 Usage: /usr/bin/python3 sim/plot_sweep.py SWEEP.csv OUT   (writes OUT.png and OUT.svg)
 
-One panel per scene and measure. x: wall time per simulated second; y: error against the
-analytic answer. Each line is one engine setting (solver and its parameter) through the
+One panel per scene and measure. x: CPU time per simulated second (the stepping thread's,
+so runs sharing a machine do not inflate it; wall time for a CSV from before the sweep
+recorded CPU time); y: error against the analytic answer. Each line is one engine setting (solver and its parameter) through the
 steps it was run at, smallest step at the costly end. Errors below 1e-12 are drawn at
 1e-12 (the panels are logarithmic). Runs with ODE solver warnings are drawn hollow.
 Needs Debian's python3-matplotlib; run with /usr/bin/python3.
@@ -39,6 +40,8 @@ def read_rows(path):
             try:
                 for key in ("parameter", "dt", "cost_s_per_s", "error", "solver_warnings"):
                     row[key] = float(row[key])
+                key = "cpu_cost_s_per_s"
+                row["cost"] = float(row[key]) if key in row else row["cost_s_per_s"]
             except ValueError:
                 raise ValueError(f"{path}: line {line}: column {key!r} is not a number: {row[key]!r}")
             rows.append(row)
@@ -56,6 +59,7 @@ def label(row):
 
 
 def plot(rows, out):
+    cost_kind = "CPU" if "cpu_cost_s_per_s" in rows[0] else "wall"
     panels = list(dict.fromkeys((r["scene"], r["metric"]) for r in rows))
     columns = min(3, len(panels))
     lines_of_panels = (len(panels) + columns - 1) // columns
@@ -75,7 +79,7 @@ def plot(rows, out):
             points.sort(key=lambda r: -r["dt"])
             colour = COLOURS.get((engine, solver), "black")
             marker = MARKERS[parameters[(engine, solver)].index(parameter) % len(MARKERS)]
-            xs = [p["cost_s_per_s"] for p in points]
+            xs = [p["cost"] for p in points]
             ys = [max(p["error"], ERROR_FLOOR) for p in points]
             (line,) = ax.plot(xs, ys, color=colour, marker=marker, linewidth=1, markersize=5, label=label(points[0]))
             warned = [(x, y) for x, y, p in zip(xs, ys, points) if p["solver_warnings"] > 0]
@@ -85,7 +89,7 @@ def plot(rows, out):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(f"{scene}: {metric.replace('_', ' ')}")
-        ax.set_xlabel("cost (wall s per simulated s)")
+        ax.set_xlabel(f"cost ({cost_kind} s per simulated s)")
         ax.set_ylabel(f"error ({UNITS.get(metric, '')})")
         ax.grid(True, which="major", alpha=0.3)
     for ax in list(axes.flat)[len(panels):]:

@@ -101,6 +101,37 @@ TEST(BusyScenes, StackOf40Stands) {
   }
 }
 
+// The 10-box stack at tolerance 1e-5 m and dt 1/60 stands at the cost of 1e-4 m. Its
+// faces used to turn beyond the narrower band and rock from edge to edge, every step at
+// the event bound. Cost is counted as work (solver sweeps, events), not timed.
+TEST(BusyScenes, TenStackAtTheNarrowToleranceStandsAtTheCostOfTheDefault) {
+  struct Work {
+    long sweeps = 0, events = 0, limitSteps = 0;
+    double drift = 0.0;
+  };
+  auto runAt = [](double tolerance) {
+    Scene scene = loadScene(std::string(POLYSIM_SCENES_DIR) + "/stack_10.json");
+    scene.contact.tolerance = tolerance;
+    World w(scene);
+    Work work;
+    for (int k = 0; k < 600; ++k) {  // 10 s
+      const StepReport& r = w.step(1.0 / 60);
+      work.sweeps += r.solverIterations;
+      work.events += static_cast<long>(r.events.size());
+      work.limitSteps += r.eventLimitHit;
+      EXPECT_LE(r.penetration, tolerance);
+    }
+    for (size_t i = 1; i < w.bodies().size(); ++i)
+      work.drift = std::max(work.drift, (w.bodies()[i].position.head<2>() - scene.bodies[i].position.head<2>()).norm());
+    return work;
+  };
+  const Work wide = runAt(1e-4), narrow = runAt(1e-5);
+  EXPECT_EQ(narrow.limitSteps, 0);
+  EXPECT_LT(narrow.drift, 1e-6);  // m in 10 s; it was 5.7 mm
+  EXPECT_LE(narrow.sweeps, 1.5 * wide.sweeps + 600);
+  EXPECT_LE(narrow.events, wide.events + 10);
+}
+
 // The same invariants on a pile small enough for the sanitizer builds: 8 tilted boxes.
 TEST(BusyScenes, SmallTiltedPileUnderEveryBuild) {
   World w(generated("pile", 8, 3));
