@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "collision/clip.h"
 #include "collision/normal_cone.h"
@@ -159,12 +160,43 @@ bool jointNormal(const std::vector<const Contact*>& pieces, const PairGeometry* 
   return admitted;
 }
 
-// The joined contacts with their joint normals, less those no piece admits.
+// Each end of a joined contact takes its gap as measured along the joint normal: the
+// smallest gap at that place (within eps) among the pieces found with that normal. The
+// pieces of one corner can disagree: a vertex 39 um off a side face, and beside it two
+// edges crossing 98 um deep along the normal taken; keeping the first piece's gap hid
+// overlaps from the solver that the next intersection test then found too deep.
+// The contact's features become those of the deepest such piece, the pair whose normal
+// it is.
+void takeGapsAlongNormal(Contact& c, const std::vector<const Contact*>& pieces, double eps) {
+  c.gaps.resize(c.points.size(), c.separation);  // a contact built without gaps: one for all
+  c.separation = std::numeric_limits<double>::infinity();
+  const Contact* deepest = nullptr;
+  double deepestGap = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < c.points.size(); ++i) {
+    double gap = std::numeric_limits<double>::infinity();
+    for (const Contact* piece : pieces) {
+      if ((piece->normal - c.normal).norm() > kNormalConeSlack) continue;
+      for (size_t j = 0; j < piece->points.size(); ++j) {
+        if ((piece->points[j] - c.points[i]).norm() > eps) continue;
+        gap = std::min(gap, piece->gapAt(j));
+        if (piece->gapAt(j) < deepestGap) deepestGap = piece->gapAt(j), deepest = piece;
+      }
+    }
+    if (gap < std::numeric_limits<double>::infinity()) c.gaps[i] = gap;
+    c.separation = std::min(c.separation, c.gaps[i]);
+  }
+  if (deepest) c.featureA = deepest->featureA, c.featureB = deepest->featureB;
+}
+
+// The joined contacts with their joint normals and gaps, less those no piece admits.
 std::vector<Contact> withJointNormals(std::vector<Contact> joined, const std::vector<std::vector<const Contact*>>& pieces,
                                       const PairGeometry* geometry, double eps) {
   std::vector<Contact> kept;
-  for (size_t k = 0; k < joined.size(); ++k)
-    if (jointNormal(pieces[k], geometry, eps, joined[k].normal)) kept.push_back(std::move(joined[k]));
+  for (size_t k = 0; k < joined.size(); ++k) {
+    if (!jointNormal(pieces[k], geometry, eps, joined[k].normal)) continue;
+    takeGapsAlongNormal(joined[k], pieces[k], eps);
+    kept.push_back(std::move(joined[k]));
+  }
   return kept;
 }
 

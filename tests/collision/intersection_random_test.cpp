@@ -10,6 +10,7 @@
 #include "collision/contact_reduction.h"
 #include "collision/intersection.h"
 #include "collision/shapes.h"
+#include "dynamics/settings.h"
 #include "tests/test_support.h"
 
 namespace polysim::collision {
@@ -135,6 +136,66 @@ TEST(IntersectionRandom, RestingBoxesGiveTheContactsOfAllPolygonPairs) {
     areas += f.areas > 0;
   }
   EXPECT_GT(areas, 60);  // the flat cases that land on something are areas
+}
+
+// Every overlap that the band admits is reported, deep enough for the step loop to undo
+// it. The interpenetration test judges an overlap by how far a polygon goes behind the
+// other's plane; a contact reports the distance along its own normal, less for an edge
+// crossing a face obliquely. The step loop pushes reported overlaps back to a quarter of
+// the tolerance (dynamics::kAllowedOverlapFraction); were the judged depth more than four
+// times the reported one, a contact pushed back would still be judged interpenetrating
+// and the step would stall at its start. Random pairs (boxes of random sizes, the
+// non-convex staple) are placed between first touching and 2 eps deeper; where a
+// tolerance of eps / 10 finds the pair interpenetrating d deep, some contact must report
+// at least d / 4. A corner reported by the wrong piece broke this: two dominoes lying on
+// each other had a corner reported 39 um apart where the edges crossed 98 um deep.
+TEST(IntersectionRandom, EveryOverlapInTheBandIsReportedAtItsDepth) {
+  std::mt19937 rng(20261129);
+  std::uniform_real_distribution<double> u(0, 1);
+  const auto staple = std::make_shared<PolygonMesh>(test::makeStaple());
+  const double kJudgedToReported = dynamics::kAllowedOverlapFraction;
+  int checked = 0;
+  double worst = 1.0;  // the least reported / judged depth seen
+  for (int trial = 0; trial < 600; ++trial) {
+    auto shape = [&]() -> std::shared_ptr<PolygonMesh> {
+      if (u(rng) < 0.25) return staple;
+      return std::make_shared<PolygonMesh>(makeBox(V3(0.2 + 2 * u(rng), 0.2 + 2 * u(rng), 0.2 + 2 * u(rng))));
+    };
+    const auto meshA = shape(), meshB = shape();
+    const Eigen::Matrix3d RA = randomRotation(rng), RB = randomRotation(rng);
+    const V3 direction = V3::Random().normalized();
+    auto statusAt = [&](double s, double tolerance, IntersectionResult* out = nullptr) {
+      ObjectDatabase db;
+      db.tolerance = tolerance;
+      db.add("A", meshA, test::pose(s * direction, RA), false);
+      db.add("B", meshB, test::pose(V3::Zero(), RB), true);
+      IntersectionResult r = test4Intersection(db);
+      if (out) *out = r;
+      return r.status;
+    };
+    const double eps = 1e-4;
+    // Bisect the distance along `direction` for the first state that is not separate,
+    // from far apart (A's and B's reaches) down to centres together.
+    double apart = meshA->bounds().sizes().norm() + meshB->bounds().sizes().norm(), together = 0.0;
+    if (statusAt(together, eps) == Status::Separate) continue;  // the staple's gap
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (apart + together);
+      (statusAt(mid, eps) == Status::Separate ? apart : together) = mid;
+    }
+    // Somewhere from first touching to 2 eps deeper along the direction.
+    const double s = apart - 2 * eps * u(rng);
+    IntersectionResult wide, narrow;
+    if (statusAt(s, eps, &wide) != Status::Contact) continue;
+    if (statusAt(s, 0.1 * eps, &narrow) != Status::Interpenetrating) continue;
+    double deepestGap = 0.0;
+    for (const Contact& c : wide.pairs[0].contacts) deepestGap = std::min(deepestGap, c.separation);
+    EXPECT_LE(deepestGap, -kJudgedToReported * narrow.pairs[0].depth) << "trial " << trial;
+    worst = std::min(worst, -deepestGap / narrow.pairs[0].depth);
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);  // most placements end in the band deep enough to check
+  RecordProperty("checked", checked);
+  RecordProperty("least_reported_to_judged", std::to_string(worst));
 }
 
 }  // namespace
