@@ -50,6 +50,24 @@ double coupling(const Row& i, const Row& j) {
   return k;
 }
 
+// The second derivative of the row's gap (m/s^2) were both bodies to keep their velocities
+// (g = n . (x_a - x_b) for the material points x_a, x_b at the contact, with n turning
+// as the face it belongs to): the turn of the normal against the relative velocity, and
+// the centripetal accelerations of the two material points. A gap curving closed over
+// the step is what a velocity target of -gap / dt misses: a domino's edge sliding down
+// its neighbour's face, which turns towards it at 2 rad/s, closes 0.4 mm more in a step
+// of 1/60 s, four tolerances; each time the step backed up to it.
+double gapCurvature(const Row& r) {
+  auto centripetal = [&](const RigidBody* body) -> Eigen::Vector3d {
+    if (body->isStatic) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d& w = body->angularVelocity;
+    return w.cross(w.cross(r.point - body->centerOfMass()));
+  };
+  const double withA = r.source->normalTurnWithA;
+  const Eigen::Vector3d normalTurn = (withA * r.a->angularVelocity + (1 - withA) * r.b->angularVelocity).cross(r.normal);
+  return r.normal.dot(centripetal(r.a) - centripetal(r.b)) + 2.0 * normalTurn.dot(relativeVelocity(r));
+}
+
 void applyPair(Row& r, const Eigen::Vector3d& J) {
   r.a->applyImpulse(J, r.point);
   r.b->applyImpulse(-J, r.point);
@@ -225,6 +243,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     // that stopped it, and closing the gap first would take gap / dt off the rebound
     // (0.6% of the speed per bounce at dt 1/240, measured on bounce_e09).
     r.target = r.restitution > 0 ? 0.0 : -std::max(c.separation, 0.0) / dt;
+    if (r.restitution == 0) r.target -= 0.5 * std::min(0.0, gapCurvature(r)) * dt;
     r.tangent1 = r.normal.unitOrthogonal();
     r.tangent2 = r.normal.cross(r.tangent1);
     if (r.friction > 0) {

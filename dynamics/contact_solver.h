@@ -22,6 +22,10 @@ struct ContactPoint {
   /// Points of one contact (an area's corners, a line's ends) share an id, and their
   /// normal impulses are solved together as one block (small_lcp.h); -1: on its own.
   int manifold = -1;
+  /// How the normal turns as the bodies do: with a's angular velocity times this plus b's
+  /// times (1 - this). 1: the normal is a face's of a (a point of b on it); 0: a face's of
+  /// b; 0.5: between two edges, or two faces together.
+  double normalTurnWithA = 0.5;
   /// In: the impulses to start from (warm start, e.g. last step's for the same point);
   /// out: the accumulated impulses solved (N s). Friction along (t1, t2), t1 =
   /// normal.unitOrthogonal(), t2 = normal x t1.
@@ -36,7 +40,9 @@ struct SolveStats {
 
 /// Changes the bodies' velocities so that no contact approaches: every contact ends with
 /// relative normal velocity >= its target (0 at rest; -gap/dt for a contact with a gap,
-/// which may close within the step), normal impulses >= 0, friction impulses within the
+/// which may close within the step; raised by the gap's closing curvature times dt / 2
+/// where the bodies' turning closes the gap faster than their velocities say: a point
+/// sliding along a face that turns towards it), normal impulses >= 0, friction impulses within the
 /// Coulomb disk mu * normal impulse (sticking while inside it, sliding on its rim).
 /// Restitution follows Poisson's hypothesis: after that compression solve, each contact
 /// that approached faster than kBounceThreshold gets e times its compression impulse
