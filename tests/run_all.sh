@@ -17,4 +17,4 @@ cmake --build build-sanitize -j2
 # The chart test is Python drawing the quick sweep, which Sweep.* already runs here; the
 # Slurm test starts daemons around the same planned runs that the GNU parallel test runs here.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|StackOf40)'
+  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|StackOf40|Dominoes)'
