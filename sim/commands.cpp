@@ -1,5 +1,6 @@
 #include "sim/commands.h"
 
+#include <filesystem>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -37,6 +38,9 @@ int contactsCommand(const std::string& scenePath, std::ostream& out) {
 
 int runCommand(const std::string& scenePath, const RunOptions& options, std::ostream& out) {
   const Scene scene = loadScene(scenePath);
+  std::error_code error;
+  if (!options.logPath.empty() && std::filesystem::equivalent(options.logPath, scenePath, error))
+    throw std::invalid_argument("--log " + options.logPath + ": is the scene file; the step log would overwrite it");
   out << runScene(scene, options).dump() << "\n";
   return 0;
 }

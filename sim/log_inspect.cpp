@@ -1,8 +1,10 @@
 #include "sim/log_inspect.h"
 
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -13,46 +15,87 @@ namespace {
 
 using nlohmann::ordered_json;
 
-bool touches(const ordered_json& pair, const std::string& body) { return pair["a"] == body || pair["b"] == body; }
+// Checked access to a step line's fields: each error names where the field was looked
+// for ("line 3: event 0: pair 1") and the field, instead of reading past what is there.
+class Fields {
+ public:
+  Fields(const ordered_json& object, std::string where) : object_(object), where_(std::move(where)) {
+    if (!object_.is_object()) throw std::runtime_error(where_ + ": not a JSON object");
+  }
+  const std::string& where() const { return where_; }
+  bool has(const char* key) const { return object_.contains(key); }
+  const ordered_json& any(const char* key) const {
+    if (!object_.contains(key)) throw std::runtime_error(where_ + ": no \"" + key + "\"");
+    return object_[key];
+  }
+  double number(const char* key) const { return typed(key, &ordered_json::is_number, "a number").get<double>(); }
+  long integer(const char* key) const { return typed(key, &ordered_json::is_number_integer, "a whole number").get<long>(); }
+  std::string text(const char* key) const { return typed(key, &ordered_json::is_string, "a string").get<std::string>(); }
+  const ordered_json& array(const char* key) const { return typed(key, &ordered_json::is_array, "an array"); }
 
-// The rows for one step line, as flat objects of numbers and strings.
-void rowsOfStep(const ordered_json& step, const LogQuery& q, std::vector<ordered_json>& rows) {
+ private:
+  const ordered_json& typed(const char* key, bool (ordered_json::*is)() const noexcept, const char* what) const {
+    const ordered_json& v = any(key);
+    if (!(v.*is)()) throw std::runtime_error(where_ + ": \"" + key + "\" is not " + what);
+    return v;
+  }
+  const ordered_json& object_;
+  std::string where_;
+};
+
+// One pair of an event as "a/b:kinds", or empty when `body` is given and not in it.
+std::string pairText(const Fields& pair, const std::optional<std::string>& body) {
+  const std::string a = pair.text("a"), b = pair.text("b");
+  if (body && a != *body && b != *body) return "";
+  std::string kinds;
+  const ordered_json& contacts = pair.has("contacts") ? pair.array("contacts") : ordered_json::array();
+  for (size_t k = 0; k < contacts.size(); ++k)
+    kinds += (kinds.empty() ? "" : "+") + Fields(contacts[k], pair.where() + ": contact " + std::to_string(k)).text("type");
+  return a + "/" + b + ":" + (kinds.empty() ? pair.text("status") : kinds);
+}
+
+// The rows for one step line, as flat objects of numbers and strings; `seen` is set when
+// the line holds the queried body.
+void rowsOfStep(const Fields& step, const LogQuery& q, std::vector<ordered_json>& rows, bool& seen) {
+  const ordered_json& events = step.array("events");
+  if (q.body)
+    for (size_t k = 0; step.has("bodies") && k < step.array("bodies").size(); ++k)
+      seen = seen || Fields(step.array("bodies")[k], step.where() + ": body " + std::to_string(k)).text("name") == *q.body;
   if (q.events) {
-    for (const ordered_json& e : step["events"]) {
-      const double t = e["time"].get<double>();
+    for (size_t k = 0; k < events.size(); ++k) {
+      const Fields e(events[k], step.where() + ": event " + std::to_string(k));
+      const double t = e.number("time");
       if (t < q.from || t > q.to) continue;
       std::string pairs;
-      for (const ordered_json& p : e["pairs"]) {
-        if (q.body && !touches(p, *q.body)) continue;
-        std::string kinds;
-        for (const ordered_json& c : p["contacts"]) kinds += (kinds.empty() ? "" : "+") + c["type"].get<std::string>();
-        pairs += (pairs.empty() ? "" : " ") + p["a"].get<std::string>() + "/" + p["b"].get<std::string>() + ":" +
-                 (kinds.empty() ? p["status"].get<std::string>() : kinds);
+      const ordered_json& list = e.array("pairs");
+      for (size_t i = 0; i < list.size(); ++i) {
+        const std::string text = pairText(Fields(list[i], e.where() + ": pair " + std::to_string(i)), q.body);
+        if (!text.empty()) pairs += (pairs.empty() ? "" : " ") + text;
       }
       if (q.body && pairs.empty()) continue;
-      rows.push_back({{"step", step["step"]}, {"time", t}, {"iterations", e["iterations"]},
-                      {"stopped_by", e["stopped_by"]}, {"pairs", pairs}});
+      rows.push_back({{"step", step.integer("step")}, {"time", t}, {"iterations", e.integer("iterations")},
+                      {"stopped_by", e.has("stopped_by") ? e.any("stopped_by") : ordered_json(nullptr)}, {"pairs", pairs}});
     }
     return;
   }
-  const double t = step["t"].get<double>();
+  const double t = step.number("t");
   if (t < q.from || t > q.to) return;
-  ordered_json row = {{"step", step["step"]}, {"t", t}, {"events", step["events"].size()}};
-  int tests = 0;
-  for (const ordered_json& e : step["events"]) tests += e["iterations"].get<int>();
+  ordered_json row = {{"step", step.integer("step")}, {"t", t}, {"events", events.size()}};
+  long tests = 0;
+  for (size_t k = 0; k < events.size(); ++k) tests += Fields(events[k], step.where() + ": event " + std::to_string(k)).integer("iterations");
   row["toc_tests"] = tests;
   // A figure the line does not hold is shown as null, never as a made-up 0.
-  auto figure = [&step](const char* key) { return step.contains(key) ? step[key] : ordered_json(nullptr); };
+  auto figure = [&step](const char* key) { return step.has(key) ? step.any(key) : ordered_json(nullptr); };
   row["penetration"] = figure("penetration");
   row["energy"] = figure("energy");
   row["solver_iterations"] = figure("solver_iterations");
-  row["islands"] = step.contains("island_events") ? ordered_json(step["island_events"].size()) : ordered_json(nullptr);
+  row["islands"] = step.has("island_events") ? ordered_json(step.array("island_events").size()) : ordered_json(nullptr);
   row["island_events"] = figure("island_events");
-  if (q.body) {
-    for (const ordered_json& b : step["bodies"])
-      if (b["name"] == *q.body) {
-        row["position"] = b["position"];
-        row["velocity"] = b["velocity"];
+  if (q.body && step.has("bodies")) {
+    for (const ordered_json& b : step.array("bodies"))
+      if (b.value("name", "") == *q.body) {
+        row["position"] = b.value("position", ordered_json(nullptr));
+        row["velocity"] = b.value("velocity", ordered_json(nullptr));
       }
   }
   rows.push_back(row);
@@ -94,23 +137,29 @@ void printTable(const std::vector<ordered_json>& rows, std::ostream& out) {
 }  // namespace
 
 void inspectLog(const std::string& path, const LogQuery& query, std::ostream& out) {
+  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": not a file (a step log is one)");
   std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
+  if (!in) throw std::runtime_error(path + ": cannot read it");
   std::vector<ordered_json> rows;
   std::string line;
+  long steps = 0;
+  bool bodySeen = false;
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     if (line.empty()) continue;
+    const std::string where = path + " line " + std::to_string(lineNo);
     ordered_json step;
     try {
       step = ordered_json::parse(line);
-      if (!step.contains("step") || !step.contains("t") || !step.contains("events")) throw std::runtime_error("");
     } catch (const std::exception&) {
       // A run cut off mid-write leaves a partial last line: that one is skipped.
-      if (in.peek() == EOF) break;
-      throw std::runtime_error(path + " line " + std::to_string(lineNo) + ": not a step of a polysim step log");
+      if (in.eof()) break;
+      throw std::runtime_error(where + ": not JSON, so not a step of a polysim step log");
     }
-    rowsOfStep(step, query, rows);
+    rowsOfStep(Fields(step, where), query, rows, bodySeen);
+    ++steps;
   }
+  if (steps == 0) throw std::runtime_error(path + ": holds no step (not a polysim step log, or empty)");
+  if (query.body && !bodySeen) throw std::runtime_error(path + ": no body named \"" + *query.body + "\" in any step");
   if (query.table) printTable(rows, out);
   else out << ordered_json(rows).dump() << "\n";
 }

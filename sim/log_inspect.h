@@ -15,8 +15,11 @@ struct LogQuery {
   bool table = false;               // aligned text instead of JSON
 };
 
-/// Reads the JSON Lines log at `path` and writes the rows. Throws std::runtime_error
-/// naming the file and line of a line that is not a step object.
+/// Reads the JSON Lines log at `path` and writes the rows. A last line cut short (no
+/// newline, not JSON: a run killed mid-write) is skipped. Throws std::runtime_error naming
+/// the file, the line and the field (e.g. "line 3: event 0: pair 1: no \"a\"") for a line
+/// that is not a step as the step log writes it; naming the file when it is not a
+/// regular file or holds no step; naming the body when `body` is in no step.
 void inspectLog(const std::string& path, const LogQuery& query, std::ostream& out);
 
 }  // namespace polysim::sim

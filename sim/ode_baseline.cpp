@@ -112,6 +112,7 @@ nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, con
 }
 
 nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings) {
+  checkRunLength(scene, options);
   ContactAgreement agreement;
   const RunRecord mine = runPolysimComparingContacts(scene, options, agreement);
   OdeWorld odeWorld(scene, settings);

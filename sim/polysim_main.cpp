@@ -35,8 +35,8 @@ int main(int argc, char** argv) {
   std::string runMethod = "bisection";
   CLI::App* run = app.add_subcommand("run", "simulate the scene and print a summary");
   run->add_option("SCENE", scene, "scene file (JSON)")->required();
-  run->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)")->check(CLI::PositiveNumber);
-  run->add_option("--dt", runDt, "step in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  run->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)");
+  run->add_option("--dt", runDt, "step in seconds (default: the scene's)");
   run->add_option("--log", runOptions.logPath, "write the step log (JSON Lines) to this file");
   run->add_option("--method", runMethod, "time-of-contact method")->check(CLI::IsMember({"bisection", "regula-falsi"}));
 
@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
 
   CLI::App* compare = app.add_subcommand("compare", "run the scene in polysim and in ODE and compare");
   compare->add_option("SCENE", scene, "scene file (JSON)")->required();
-  compare->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)")->check(CLI::PositiveNumber);
-  compare->add_option("--dt", runDt, "step in seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  compare->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)");
+  compare->add_option("--dt", runDt, "step in seconds (default: the scene's)");
   compare->add_option("--method", runMethod, "polysim's time-of-contact method")
       ->check(CLI::IsMember({"bisection", "regula-falsi"}));
   polysim::sim::OdeSettings ode;
@@ -105,12 +105,13 @@ int main(int argc, char** argv) {
   make->add_option("--out", makeOut, "scene file to write (default: standard output)");
 
   CLI11_PARSE(app, argc, argv);
-  auto takeRunFlags = [&] {  // shared by run and compare
-    if (runDuration > 0) runOptions.duration = runDuration;
-    if (runDt > 0) runOptions.dt = runDt;
+  auto takeRunFlags = [&] {  // shared by run and compare; checked by checkRunLength (run.h)
+    const CLI::App* command = run->parsed() ? run : compare;
+    if (command->count("--duration")) runOptions.duration = runDuration;
+    if (command->count("--dt")) runOptions.dt = runDt;
     runOptions.method = polysim::collision::tocMethodNamed(runMethod);
   };
-  try {
+  auto dispatch = [&]() -> int {
     if (contacts->parsed()) return polysim::sim::contactsCommand(scene, std::cout);
     if (run->parsed()) {
       takeRunFlags();
@@ -149,6 +150,14 @@ int main(int argc, char** argv) {
       if (makeDuration > 0) makeOptions.duration = makeDuration;
       return polysim::sim::makeCommand(makeOptions, makeOut, std::cout);
     }
+    return 0;
+  };
+  try {
+    const int status = dispatch();
+    // A full disk or a closed pipe must not pass for success: the result was not delivered.
+    std::cout.flush();
+    if (!std::cout) throw std::runtime_error("cannot write to standard output");
+    return status;
   } catch (const polysim::sim::SceneError& e) {
     std::cerr << e.what() << "\n";
     return 1;
@@ -156,5 +165,4 @@ int main(int argc, char** argv) {
     std::cerr << "polysim: " << e.what() << "\n";
     return 1;
   }
-  return 0;
 }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <sstream>
+#include <stdexcept>
 
 #include "sim/polysim_engine.h"
 #include "sim/run_record.h"
@@ -31,7 +33,26 @@ class ProgressBar {
 
 }  // namespace
 
+void checkRunLength(const Scene& scene, const RunOptions& options) {
+  const double dt = options.dtFor(scene), duration = options.duration.value_or(scene.duration);
+  auto text = [](double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  };
+  if (!std::isfinite(dt) || dt <= 0) throw std::invalid_argument("--dt: the step must be a positive number of seconds, not " + text(dt));
+  if (!std::isfinite(duration) || duration <= 0)
+    throw std::invalid_argument("--duration: must be a positive number of seconds, not " + text(duration));
+  const double steps = std::round(duration / dt);
+  if (steps < 1)
+    throw std::invalid_argument("--duration: " + text(duration) + " s is shorter than one step of " + text(dt) + " s");
+  if (steps > static_cast<double>(kMaxRunSteps))
+    throw std::invalid_argument("--duration / --dt: " + text(duration) + " s in steps of " + text(dt) + " s is " +
+                                text(steps) + " steps, more than " + text(static_cast<double>(kMaxRunSteps)));
+}
+
 nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
+  checkRunLength(scene, options);
   const long steps = options.stepsFor(scene);
   PolysimEngine engine(scene, options.method);
   std::unique_ptr<StepLog> log;

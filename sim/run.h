@@ -11,6 +11,10 @@
 
 namespace polysim::sim {
 
+/// The most steps one run takes (`checkRunLength`): 10^8 steps is a day at 1 ms a step
+/// and a step log of tens of GB; a longer run is almost surely a mistyped duration or dt.
+inline constexpr long kMaxRunSteps = 100'000'000;
+
 struct RunOptions {
   std::optional<double> duration, dt;  // s; the scene's when not given
   std::string logPath;                 // empty: no step log
@@ -20,6 +24,10 @@ struct RunOptions {
   double dtFor(const Scene& scene) const { return dt.value_or(scene.dt); }
   long stepsFor(const Scene& scene) const { return std::lround(duration.value_or(scene.duration) / dtFor(scene)); }
 };
+
+/// Throws std::invalid_argument naming the option at fault (--dt, --duration) unless dt
+/// and duration are finite and positive and make from 1 to kMaxRunSteps steps.
+void checkRunLength(const Scene& scene, const RunOptions& options);
 
 /// Runs the scene and returns SPEC.md's summary: scene, steps, sim_time, wall_time_s,
 /// first_contact_time, max_penetration, energy {initial, final, max_increase}, bodies

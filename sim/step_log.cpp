@@ -40,13 +40,14 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) 
   return line;
 }
 
-StepLog::StepLog(const std::string& path) : out_(path, std::ios::trunc) {
-  if (!out_) throw std::runtime_error("cannot write the step log " + path);
+StepLog::StepLog(const std::string& path) : path_(path), out_(path, std::ios::trunc) {
+  if (!out_) throw std::runtime_error(path + ": cannot write the step log");
 }
 
 void StepLog::write(const World& world, const StepReport& report) {
   out_ << stepToJson(world, report).dump() << "\n";
   out_.flush();  // every finished step readable even if the run is interrupted
+  if (!out_) throw std::runtime_error(path_ + ": writing the step log failed");
 }
 
 }  // namespace polysim::sim

@@ -19,9 +19,12 @@ class StepLog {
  public:
   /// Opens (truncates) `path`; throws std::runtime_error naming it when it cannot.
   explicit StepLog(const std::string& path);
+  /// Appends the step's line and flushes it; throws std::runtime_error naming the file
+  /// when it cannot be written (a full disk, /dev/full).
   void write(const World& world, const StepReport& report);
 
  private:
+  std::string path_;
   std::ofstream out_;
 };
 

@@ -1,0 +1,120 @@
+// What a user gets wrong, run through the polysim binary as a user runs it: one message on
+// stderr naming the file, line or option and the field, exit status 1 (never a signal),
+// nothing on stdout, and no file damaged. Each case crashed or passed silently before.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace polysim::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;  // exit status; -1 when killed by a signal
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(testing::TempDir()) / ("polysim-bad-input-" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `polysim ARGS` from dir_; `stdoutTo` replaces the captured stdout when given.
+  Outcome polysim(const std::string& args, const std::string& stdoutTo = "") const {
+    const fs::path out = dir_ / "stdout", err = dir_ / "stderr";
+    const std::string command = "cd " + dir_.string() + " && " + POLYSIM_BINARY + " " + args + " >" +
+                                (stdoutTo.empty() ? out.string() : stdoutTo) + " 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    Outcome o;
+    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    o.out = stdoutTo.empty() ? slurp(out) : "";
+    o.err = slurp(err);
+    return o;
+  }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  // Exit 1, nothing on stdout, one line on stderr holding each of `parts`.
+  void expectOneError(const Outcome& o, const std::vector<std::string>& parts) const {
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_EQ(o.out, "");
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    for (const std::string& p : parts) EXPECT_NE(o.err.find(p), std::string::npos) << "no \"" << p << "\" in: " << o.err;
+  }
+  fs::path dir_;
+  const std::string scene_ = std::string(POLYSIM_SCENES_DIR) + "/drop_box.json";
+};
+
+TEST_F(BadInput, StepLogLinesMissingAFieldAreNamedNotCrashedOn) {
+  const std::string good = R"({"step":2,"t":0.5,"events":[]})";
+  write("event.jsonl", "{\"step\":1,\"t\":0,\"events\":[{}]}\n" + good + "\n");
+  expectOneError(polysim("log event.jsonl"), {"event.jsonl line 1: event 0: no \"iterations\""});
+  write("pair.jsonl", "{\"step\":1,\"t\":0,\"events\":[{\"time\":0.1,\"iterations\":3,\"pairs\":[{}]}]}\n" + good + "\n");
+  expectOneError(polysim("log pair.jsonl --events"), {"pair.jsonl line 1: event 0: pair 0: no \"a\""});
+  write("type.jsonl", "{\"step\":1,\"t\":\"soon\",\"events\":[]}\n");
+  expectOneError(polysim("log type.jsonl"), {"type.jsonl line 1: \"t\" is not a number"});
+  write("array.jsonl", "[1,2]\n" + good + "\n");
+  expectOneError(polysim("log array.jsonl"), {"array.jsonl line 1: not a JSON object"});
+}
+
+TEST_F(BadInput, WhatIsNotAStepLogIsSaidToBeNone) {
+  expectOneError(polysim("log ."), {".: not a file"});
+  write("empty.jsonl", "");
+  expectOneError(polysim("log empty.jsonl"), {"empty.jsonl: holds no step"});
+  expectOneError(polysim("log " + scene_), {"drop_box.json line 1: not JSON"});  // a scene file, several lines
+  // A garbage line that ends with a newline is not a run cut short.
+  write("garbage.jsonl", R"({"step":1,"t":0.5,"events":[]})" "\nnot json\n");
+  expectOneError(polysim("log garbage.jsonl"), {"garbage.jsonl line 2: not JSON"});
+  // A last line cut short (no newline) is the run killed mid-write: the rest is read.
+  write("cut.jsonl", R"({"step":1,"t":0.5,"events":[]})" "\n{\"step\":2,\"t\":");
+  const Outcome cut = polysim("log cut.jsonl");
+  EXPECT_EQ(cut.status, 0) << cut.err;
+  EXPECT_NE(cut.out.find("\"step\":1"), std::string::npos) << cut.out;
+}
+
+TEST_F(BadInput, ABodyThatIsInNoStepIsNamed) {
+  ASSERT_EQ(polysim("run " + scene_ + " --duration 0.05 --log drop.jsonl").status, 0);
+  expectOneError(polysim("log drop.jsonl --body nobody"), {"drop.jsonl: no body named \"nobody\""});
+  EXPECT_EQ(polysim("log drop.jsonl --body box").status, 0);
+}
+
+TEST_F(BadInput, WritesThatFailAreErrors) {
+  expectOneError(polysim("run " + scene_ + " --duration 0.05 --log /dev/full"), {"/dev/full: writing the step log failed"});
+  const Outcome full = polysim("run " + scene_ + " --duration 0.05", "/dev/full");
+  EXPECT_EQ(full.status, 1);
+  EXPECT_NE(full.err.find("cannot write to standard output"), std::string::npos) << full.err;
+}
+
+TEST_F(BadInput, ALogNamingTheSceneLeavesTheSceneAlone) {
+  fs::copy_file(scene_, dir_ / "scene.json");
+  const std::string before = slurp(dir_ / "scene.json");
+  expectOneError(polysim("run scene.json --duration 0.05 --log ./scene.json"), {"--log ./scene.json: is the scene file"});
+  EXPECT_EQ(slurp(dir_ / "scene.json"), before);
+}
+
+TEST_F(BadInput, StepsAndDurationsThatMakeNoRunAreRefused) {
+  expectOneError(polysim("run " + scene_ + " --dt nan --duration 0.1"), {"--dt", "nan"});
+  expectOneError(polysim("run " + scene_ + " --dt -0.01"), {"--dt", "-0.01"});
+  expectOneError(polysim("run " + scene_ + " --dt 1e-300 --duration 0.1"), {"--duration / --dt", "more than 1e+08"});
+  expectOneError(polysim("run " + scene_ + " --duration 0.001"), {"--duration: 0.001 s is shorter than one step"});
+  expectOneError(polysim("run " + scene_ + " --duration 1e9 --dt 0.001"), {"1e+12 steps"});
+  expectOneError(polysim("compare " + scene_ + " --duration inf"), {"--duration", "inf"});
+}
+
+}  // namespace
+}  // namespace polysim::sim
