@@ -31,6 +31,23 @@ class ProgressBar {
   int shown_ = -1;
 };
 
+// A state or energy that overflowed (a density of 1e308, a speed of 1e308) is an error
+// naming the body and the time, not a summary of nulls; the step log keeps every step
+// before it.
+void checkFinite(const Scene& scene, const World& world) {
+  for (size_t i = 0; i < world.bodies().size(); ++i) {
+    const dynamics::RigidBody& b = world.bodies()[i];
+    const double energy = b.kineticEnergy() - b.mass * scene.gravity.dot(b.centerOfMass());  // J, as World::energy
+    if (b.isStatic || (b.position.allFinite() && b.velocity.allFinite() && b.angularVelocity.allFinite() &&
+                       b.orientation.coeffs().allFinite() && std::isfinite(energy)))
+      continue;
+    std::ostringstream s;
+    s << scene.file << ": body \"" << scene.bodies[i].name << "\": its state overflowed at t = " << world.time()
+      << " s (a mass, density or speed beyond what double precision can simulate)";
+    throw std::runtime_error(s.str());
+  }
+}
+
 }  // namespace
 
 void checkRunLength(const Scene& scene, const RunOptions& options) {
@@ -65,6 +82,7 @@ nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
     eventLimitSteps += engine.lastReport().eventLimitHit;
     if (log) log->write(engine.world(), engine.lastReport());
     if (bar) bar->update(++done);
+    checkFinite(scene, engine.world());
   });
   nlohmann::ordered_json summary = summaryToJson(scene.name, record);
   summary["event_limit_steps"] = eventLimitSteps;

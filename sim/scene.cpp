@@ -211,7 +211,8 @@ BodySpec readBody(const json& bodyJson, size_t index, const std::filesystem::pat
   Fields f(bodyJson, where, problems);
   if (const auto name = f.string("name", true)) {
     body.name = *name;
-    where = "body \"" + *name + "\"";
+    if (name->empty()) problems.add(where, "name must not be empty");
+    else where = "body \"" + *name + "\"";
   }
   Fields fields(bodyJson, where, problems);
   fields.allowOnly({"name", "shape", "static", "position", "orientation", "velocity", "angular_velocity", "mass",
@@ -268,6 +269,10 @@ double BodySpec::reachFrom(const Eigen::Vector3d& point) const {
 
 Scene loadScene(const std::string& path) {
   Problems problems(path);
+  if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path)) {
+    problems.add("", "not a file (a scene is a JSON file)");
+    problems.raise();
+  }
   std::ifstream in(path);
   if (!in) {
     problems.add("", "cannot read the file");
@@ -341,6 +346,15 @@ collision::ObjectDatabase buildObjectDatabase(const Scene& scene) {
 
 void checkInitialState(const Scene& scene) {
   const collision::ObjectDatabase db = buildObjectDatabase(scene);
+  // A dynamic body no thicker than twice the band has no inside the band can tell from
+  // its outside: resting on the ground it would be judged in contact from both faces.
+  Problems thin(scene.file);
+  for (size_t i = 0; i < scene.bodies.size(); ++i)
+    if (!scene.bodies[i].isStatic && db.objects[i].thickness <= 2 * scene.contact.tolerance)
+      thin.add("body \"" + scene.bodies[i].name + "\": shape",
+               "is " + Fields::num(db.objects[i].thickness) + " m thick at its thinnest, not more than twice the "
+               "contact tolerance (" + Fields::num(scene.contact.tolerance) + " m)");
+  if (!thin.empty()) thin.raise();
   collision::IntersectionOptions options;
   options.contacts = false;
   const collision::IntersectionResult r = collision::test4Intersection(db, options);

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -114,6 +117,31 @@ TEST_F(BadInput, StepsAndDurationsThatMakeNoRunAreRefused) {
   expectOneError(polysim("run " + scene_ + " --duration 0.001"), {"--duration: 0.001 s is shorter than one step"});
   expectOneError(polysim("run " + scene_ + " --duration 1e9 --dt 0.001"), {"1e+12 steps"});
   expectOneError(polysim("compare " + scene_ + " --duration inf"), {"--duration", "inf"});
+}
+
+TEST_F(BadInput, ScenesThatCannotBeSimulatedAreRefusedByName) {
+  nlohmann::json base;
+  std::ifstream(scene_) >> base;
+  auto variant = [&](const std::string& name, const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json s = base;
+    change(s);
+    write(name, s.dump());
+    return name;
+  };
+  expectOneError(polysim("run " + variant("unnamed.json", [](nlohmann::json& s) { s["bodies"][1]["name"] = ""; })),
+                 {"unnamed.json: body 1: name must not be empty"});
+  expectOneError(polysim("run " + variant("tiny.json", [](nlohmann::json& s) { s["bodies"][1]["shape"]["size"] = {5e-5, 1, 1}; })),
+                 {"tiny.json: body \"box\": shape: is 5e-05 m thick", "twice the contact tolerance"});
+  fs::create_directories(dir_ / "folder.json");
+  expectOneError(polysim("run folder.json"), {"folder.json: not a file"});
+  // Finite numbers whose products overflow: the run stops with the body and the time.
+  const std::string dense = variant("dense.json", [](nlohmann::json& s) {
+    s["bodies"][1].erase("mass");
+    s["bodies"][1]["density"] = 1e308;
+  });
+  expectOneError(polysim("run " + dense + " --duration 0.1"), {"dense.json: body \"box\": its state overflowed at t ="});
+  const std::string fast = variant("fast.json", [](nlohmann::json& s) { s["bodies"][1]["velocity"] = {1e308, 0, 0}; });
+  expectOneError(polysim("run " + fast + " --duration 0.1"), {"fast.json: body \"box\": its state overflowed"});
 }
 
 }  // namespace
