@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -107,7 +108,12 @@ class Fields {
     if (!has(key)) return missing(key, required), std::nullopt;
     const json& v = object_.at(key);
     if (!v.is_number_integer()) return wrong(key, "an integer", v), std::nullopt;
-    return v.get<int>();
+    const long long wide = v.get<long long>();  // 2^32 + 1 must not wrap to 1
+    if (wide < std::numeric_limits<int>::min() || wide > std::numeric_limits<int>::max())
+      return problem(key + " " + std::to_string(wide) + " is out of range (beyond " +
+                     std::to_string(std::numeric_limits<int>::max()) + ")"),
+             std::nullopt;
+    return static_cast<int>(wide);
   }
   void problem(const std::string& what) { problems_.add(where_, what); }
   const std::string& where() const { return where_; }
@@ -149,7 +155,14 @@ collision::MeshData meshFromJson(Fields& shape) {
     bool ok = face.is_array();
     for (size_t k = 0; ok && k < face.size(); ++k) {
       ok = face[k].is_number_integer();
-      if (ok) ids.push_back(face[k].get<int>());
+      if (!ok) break;
+      // Read wide, so that 2^32 + 1 cannot wrap to 1; validateMesh checks the range of the rest.
+      const long long id = face[k].get<long long>();
+      if (id < 0 || id > std::numeric_limits<int>::max())
+        return shape.problem("face " + std::to_string(f) + " uses vertex " + std::to_string(id) + ", out of range 0.." +
+                             std::to_string(static_cast<long long>(vertices.size()) - 1)),
+               collision::MeshData{};
+      ids.push_back(static_cast<int>(id));
     }
     if (!ok) return shape.problem("face " + std::to_string(f) + " must be a list of vertex indices"), collision::MeshData{};
     mesh.faces.push_back(std::move(ids));

@@ -117,6 +117,11 @@ INSTANTIATE_TEST_SUITE_P(
                    {"name": "a", "shape": {"type": "box", "size": [1,1,1]}, "position": [5,0,0]}]})", "body \"a\": duplicate name"},
         Rejection{"index_out_of_range", SceneFiles::withBody(cubeWith(R"([[0,2,3,1],[4,5,7,6],[0,1,5,4],[2,6,7,3],[0,4,6,2],[1,3,7,9]])")),
                   "body \"box\": shape: face 5 uses vertex 9, out of range 0..7"},
+        Rejection{"index_beyond_int", SceneFiles::withBody(cubeWith(R"([[4294967297,2,3,1],[4,5,7,6]])")),
+                  "body \"box\": shape: face 0 uses vertex 4294967297, out of range 0..7"},  // it wrapped to 1
+        Rejection{"subdivisions_beyond_int", SceneFiles::withBody(R"("shape": {"type": "icosphere", "radius": 1, "subdivisions": 4294967297})"),
+                  "shape: subdivisions 4294967297 is out of range"},
+        Rejection{"empty_name", R"({"bodies": [{"name": "", "shape": {"type": "box", "size": [1,1,1]}}]})", "body 0: name must not be empty"},
         Rejection{"face_with_two_vertices", SceneFiles::withBody(cubeWith(R"([[0,2],[4,5,7,6]])")), "face 0 has 2 vertices"},
         Rejection{"non_planar_face", SceneFiles::withBody(cubeWith(kCubeFaces,
                   R"("vertices": [[-1,-1,-1],[1,-1,-1],[-1,1,-1],[1,1,-1],[-1,-1,1],[1,-1,1],[-1,1,1],[1,1,1.2]])")),
