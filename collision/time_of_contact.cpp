@@ -16,8 +16,9 @@ namespace {
 using namespace toc;
 
 // Into how many sub-intervals the interval must be split so that no pair moves farther
-// than kTunnelingSafety times its thinner object's thickness between two tests.
-int subintervalsAgainstTunnelling(const ObjectDatabase& db) {
+// than kTunnelingSafety times its thinner object's thickness between two tests; may be
+// more than kMaxSubintervals (and is not a whole number).
+double subintervalsAgainstTunnelling(const ObjectDatabase& db) {
   double worst = 0.0;
   const int n = static_cast<int>(db.objects.size());
   for (int a = 0; a < n; ++a)
@@ -31,7 +32,7 @@ int subintervalsAgainstTunnelling(const ObjectDatabase& db) {
       if (!grow(worldContainer(A), A.motionBound).intersects(grow(worldContainer(B), B.motionBound))) continue;
       worst = std::max(worst, motion / (kTunnelingSafety * thickness));
     }
-  return static_cast<int>(std::clamp(std::ceil(worst), 1.0, static_cast<double>(kMaxSubintervals)));
+  return worst;
 }
 
 [[noreturn]] void reportInitialInterpenetration(const ObjectDatabase& db, const IntersectionResult& r) {
@@ -129,7 +130,9 @@ TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options) {
 TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, const TocOptions& options) {
   Search s{db, workspace};
   TocResult result;
-  result.subintervals = subintervalsAgainstTunnelling(db);
+  const double needed = subintervalsAgainstTunnelling(db);
+  result.subintervals = static_cast<int>(std::clamp(std::ceil(needed), 1.0, static_cast<double>(kMaxSubintervals)));
+  result.tunnellingGuarded = needed <= kMaxSubintervals;
   // Regula falsi measures separations anyway; where the separating axis test measures
   // every pair that can meet, it also scans. Bisection keeps the seed's tests.
   const bool scanByAxes = options.method == TocMethod::RegulaFalsi && measuredByAxes(db, s.meeting);

@@ -50,6 +50,9 @@ struct TocResult {
   int separations = 0;
   /// Sub-intervals the interval was split into against tunnelling (1: none).
   int subintervals = 1;
+  /// False when the split against tunnelling needed more than kMaxSubintervals: some pair
+  /// moves so far for its thickness that it may pass through another between two tests.
+  bool tunnellingGuarded = true;
   TocStop stoppedBy = TocStop::NoInterpenetration;
 };
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "collision/time_of_contact.h"
+#include "collision/tolerances.h"
 #include "sim/json_output.h"
 #include "sim/kinematic_motion.h"
 #include "sim/ode_baseline.h"
@@ -73,6 +74,10 @@ int tocCommand(const std::string& scenePath, double interval, const std::string&
   j["iterations"] = r.iterations;
   j["method"] = collision::toString(options.method);
   j["stopped_by"] = collision::toString(r.stoppedBy);
+  j["tunnelling_guarded"] = r.tunnellingGuarded;
+  if (!r.tunnellingGuarded)
+    j["warning"] = "a body moves farther for its thickness than " + std::to_string(collision::kMaxSubintervals) +
+                   " sub-intervals cover: it may pass through another unseen; shorten the interval";
   j["subintervals"] = r.subintervals;
   j["separations"] = r.separations;
   out << j.dump() << "\n";

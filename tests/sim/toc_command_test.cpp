@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <fstream>
 #include <sstream>
 
 #include "collision/tolerances.h"
@@ -38,6 +39,23 @@ TEST(TocCommand, BoxOntoSlabGivesTheContactTimeWithEitherMethod) {
       EXPECT_LT(j["iterations"].get<int>(), tocOf("toc_box_onto_slab.json", "bisection")["iterations"].get<int>());
     }
   }
+}
+
+// A box moving 10^6 m in the interval, through a 1 m ground: more sub-intervals than the
+// tunnelling guard may take. The answer says the guard did not hold instead of passing
+// "separate" off as sure.
+TEST(TocCommand, MotionBeyondTheTunnellingGuardIsSaidSo) {
+  const std::string path = testing::TempDir() + "polysim_toc_far.json";
+  std::ofstream(path) << R"({"dt": 1, "bodies": [
+      {"name": "ground", "static": true, "shape": {"type": "box", "size": [10, 10, 1]}, "position": [0, 0, -0.5]},
+      {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 3], "velocity": [0, 0, -1e6]}]})";
+  std::ostringstream out;
+  ASSERT_EQ(tocCommand(path, 0.0, "bisection", out), 0);
+  const nlohmann::json far = nlohmann::json::parse(out.str());
+  EXPECT_EQ(far["tunnelling_guarded"], false);
+  EXPECT_EQ(far["subintervals"], collision::kMaxSubintervals);
+  EXPECT_NE(far["warning"].get<std::string>().find("may pass through"), std::string::npos);
+  EXPECT_EQ(tocOf("toc_box_onto_slab.json", "bisection")["tunnelling_guarded"], true);
 }
 
 }  // namespace
