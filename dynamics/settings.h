@@ -40,4 +40,14 @@ inline constexpr double kBounceThreshold = 0.5;
 /// reported at rest.
 inline constexpr double kRestSpeed = 1e-3;
 
+/// Sleeping (sleep.h): a body is slow while it, and the farthest point of its spin, move
+/// slower than kSleepSpeed (m/s); an island whose bodies have all been slow for
+/// kTimeToSleep (s) falls asleep. Box2D and Jolt use 0.05 m/s and 0.5 s; polysim's
+/// resting contacts settle to far below 1 mm/s, so a body still moving at 1 cm/s is
+/// settling, not resting. The price of any speed rule: a body that starts from rest
+/// accelerating at less than kSleepSpeed / kTimeToSleep (0.02 m/s^2) sleeps before it is
+/// seen moving.
+inline constexpr double kSleepSpeed = 1e-2;
+inline constexpr double kTimeToSleep = 0.5;
+
 }  // namespace polysim::dynamics

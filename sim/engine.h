@@ -32,6 +32,8 @@ class Engine {
   virtual double stepPenetration() const = 0;
   /// When bodies first touched (s), if they have.
   virtual std::optional<double> firstContactTime() const = 0;
+  /// How many dynamic bodies are asleep (the scene's "sleep"; ODE: auto-disabled).
+  virtual int sleepingBodies() const = 0;
 };
 
 }  // namespace polysim::sim

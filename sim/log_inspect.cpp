@@ -91,6 +91,7 @@ void rowsOfStep(const Fields& step, const LogQuery& q, std::vector<ordered_json>
   row["solver_iterations"] = figure("solver_iterations");
   row["islands"] = step.has("island_events") ? ordered_json(step.array("island_events").size()) : ordered_json(nullptr);
   row["island_events"] = figure("island_events");
+  row["sleeping"] = figure("sleeping");
   if (q.body && step.has("bodies")) {
     for (const ordered_json& b : step.array("bodies"))
       if (b.value("name", "") == *q.body) {

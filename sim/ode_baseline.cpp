@@ -98,6 +98,7 @@ nlohmann::ordered_json odeSummary(const Scene& scene, const RunRecord& record, c
   nlohmann::ordered_json summary = {{"engine", "ode"}};
   summary.update(summaryToJson(scene.name, record));
   summary["settings"] = settingsToJson(settings);
+  summary["sleeping_bodies"] = world.sleepingBodies();
   summary["ode_messages"] = {{"count", world.messages()},
                              {"last", world.messages() > 0 ? nlohmann::ordered_json(odeMessages().last) : nullptr}};
   return summary;

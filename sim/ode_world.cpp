@@ -67,6 +67,12 @@ OdeWorld::OdeWorld(const Scene& scene, const OdeSettings& settings) : scene_(sce
   dWorldSetERP(world_, settings.erp);
   dWorldSetCFM(world_, settings.cfm);
   dWorldSetQuickStepNumIterations(world_, settings.quickStepIterations);
+  if (scene.sleep.enabled) {  // ODE's auto-disable with the scene's rule (dynamics/sleep.h)
+    dWorldSetAutoDisableFlag(world_, 1);
+    dWorldSetAutoDisableLinearThreshold(world_, scene.sleep.speed);
+    dWorldSetAutoDisableTime(world_, scene.sleep.time);
+    dWorldSetAutoDisableSteps(world_, 1);  // the time alone decides, as in polysim
+  }
   scratch_.resize(settings.maxContactsPerPair);
 
   for (const BodySpec& spec : scene.bodies) {
@@ -96,6 +102,7 @@ OdeWorld::OdeWorld(const Scene& scene, const OdeSettings& settings) : scene_(sce
     dBodySetQuaternion(b->body, q);
     dBodySetLinearVel(b->body, spec.velocity.x(), spec.velocity.y(), spec.velocity.z());
     dBodySetAngularVel(b->body, spec.angularVelocity.x(), spec.angularVelocity.y(), spec.angularVelocity.z());
+    if (scene.sleep.enabled) dBodySetAutoDisableAngularThreshold(b->body, scene.sleep.speed / b->size);  // spin at its farthest point
     dGeomSetBody(b->geom.geom(), b->body);
     dGeomSetOffsetPosition(b->geom.geom(), -props.centerOfMass.x(), -props.centerOfMass.y(), -props.centerOfMass.z());
     bodies_.push_back(std::move(b));
@@ -154,6 +161,12 @@ std::vector<BodyState> OdeWorld::bodyStates() const {
     states.push_back({scene_.bodies[i].name, origin, orientation, v, omega, dynamics::atRest(v, omega, b.size)});
   }
   return states;
+}
+
+int OdeWorld::sleepingBodies() const {
+  int sleeping = 0;
+  for (const auto& b : bodies_) sleeping += b->body && !dBodyIsEnabled(b->body);
+  return sleeping;
 }
 
 double OdeWorld::energy() const {

@@ -55,6 +55,7 @@ class OdeWorld : public Engine {
   /// The deepest contact depth ODE reported in the last step's collision pass.
   double stepPenetration() const override { return deepest_; }
   std::optional<double> firstContactTime() const override { return firstContact_; }
+  int sleepingBodies() const override;
   /// ODE's warnings since this world was built (see OdeMessageLog).
   long messages() const { return odeMessages().count - messagesBefore_; }
 

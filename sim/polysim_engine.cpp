@@ -18,4 +18,10 @@ std::optional<double> PolysimEngine::firstContactTime() const {
   return world_.firstContactTime();
 }
 
+int PolysimEngine::sleepingBodies() const {
+  int sleeping = 0;
+  for (size_t i = 0; i < world_.bodies().size(); ++i) sleeping += world_.asleep(static_cast<int>(i));
+  return sleeping;
+}
+
 }  // namespace polysim::sim

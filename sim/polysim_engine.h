@@ -15,6 +15,7 @@ class PolysimEngine : public Engine {
   double energy() const override { return world_.energy(); }
   double stepPenetration() const override { return report_ ? report_->penetration : 0.0; }
   std::optional<double> firstContactTime() const override;
+  int sleepingBodies() const override;
 
   const World& world() const { return world_; }
   /// The last step's report (valid after the first step).

@@ -86,6 +86,7 @@ nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
   });
   nlohmann::ordered_json summary = summaryToJson(scene.name, record);
   summary["event_limit_steps"] = eventLimitSteps;
+  summary["sleeping_bodies"] = engine.sleepingBodies();
   return summary;
 }
 

@@ -8,18 +8,13 @@
 #include "sim/json_output.h"
 
 namespace polysim::sim {
-namespace {
 
-// s of CPU time used by the calling thread (POSIX: the process's clock would also count
-// other threads, wall time also counts other processes).
 double threadCpuSeconds() {
   constexpr double kSecondsPerNanosecond = 1e-9;
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + kSecondsPerNanosecond * static_cast<double>(t.tv_nsec);
 }
-
-}  // namespace
 
 double RunRecord::drift(size_t i) const {
   const Eigen::Vector3d moved = final[i].position - initial[i].position;

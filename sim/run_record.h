@@ -33,6 +33,10 @@ struct RunRecord {
   double heightChange(size_t i) const { return (final[i].position - initial[i].position).dot(up); }
 };
 
+/// CPU time (s) used so far by the calling thread (POSIX: the process's clock would also
+/// count other threads, wall time also counts other processes).
+double threadCpuSeconds();
+
 /// Steps `engine` `steps` times by dt, calling afterStep (when given) after each step.
 /// `up` is the scene's (Scene::up).
 RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d& up,

@@ -256,6 +256,33 @@ BodySpec readBody(const json& bodyJson, size_t index, const std::filesystem::pat
   return body;
 }
 
+// The optional settings objects "contact" and "sleep".
+void readSettings(const json& root, Scene& scene, Problems& problems) {
+  auto object = [&](const char* key) -> std::optional<Fields> {
+    if (!root.contains(key)) return std::nullopt;
+    if (!root[key].is_object()) return problems.add(key, "must be an object"), std::nullopt;
+    return Fields(root[key], key, problems);
+  };
+  if (std::optional<Fields> contact = object("contact")) {
+    contact->allowOnly({"tolerance", "restitution", "friction"});
+    if (auto t = contact->positive("tolerance")) scene.contact.tolerance = *t;
+    if (auto e = contact->number("restitution")) {
+      if (*e < 0 || *e > 1) contact->problem("restitution must be in [0, 1]");
+      scene.contact.restitution = *e;
+    }
+    if (auto mu = contact->number("friction")) {
+      if (*mu < 0) contact->problem("friction must not be negative");
+      scene.contact.friction = *mu;
+    }
+  }
+  if (std::optional<Fields> sleep = object("sleep")) {
+    sleep->allowOnly({"enabled", "speed", "time"});
+    if (auto on = sleep->boolean("enabled")) scene.sleep.enabled = *on;
+    if (auto v = sleep->positive("speed")) scene.sleep.speed = *v;
+    if (auto t = sleep->positive("time")) scene.sleep.time = *t;
+  }
+}
+
 }  // namespace
 
 Eigen::Isometry3d BodySpec::pose() const {
@@ -309,28 +336,12 @@ Scene loadScene(const std::string& path) {
   Scene scene;
   scene.file = path;
   Fields top(root, "", problems);
-  top.allowOnly({"name", "gravity", "dt", "duration", "contact", "bodies"});
+  top.allowOnly({"name", "gravity", "dt", "duration", "contact", "sleep", "bodies"});
   scene.name = top.string("name").value_or(std::filesystem::path(path).stem().string());
   if (auto g = top.vector<3>("gravity")) scene.gravity = *g;
   if (auto dt = top.positive("dt")) scene.dt = *dt;
   if (auto d = top.positive("duration")) scene.duration = *d;
-  if (top.has("contact")) {
-    if (!root["contact"].is_object()) {
-      problems.add("contact", "must be an object");
-    } else {
-      Fields contact(root["contact"], "contact", problems);
-      contact.allowOnly({"tolerance", "restitution", "friction"});
-      if (auto t = contact.positive("tolerance")) scene.contact.tolerance = *t;
-      if (auto e = contact.number("restitution")) {
-        if (*e < 0 || *e > 1) contact.problem("restitution must be in [0, 1]");
-        scene.contact.restitution = *e;
-      }
-      if (auto mu = contact.number("friction")) {
-        if (*mu < 0) contact.problem("friction must not be negative");
-        scene.contact.friction = *mu;
-      }
-    }
-  }
+  readSettings(root, scene, problems);
   if (!top.has("bodies")) {
     problems.add("", "missing field \"bodies\"");
   } else if (!root["bodies"].is_array() || root["bodies"].empty()) {

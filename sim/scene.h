@@ -12,6 +12,7 @@
 #include "collision/polygon_mesh.h"
 #include "collision/tolerances.h"
 #include "dynamics/mass_properties.h"
+#include "dynamics/sleep.h"
 
 namespace polysim::sim {
 
@@ -58,6 +59,7 @@ struct Scene {
   double dt = 1.0 / 240.0;               // s
   double duration = 1.0;                 // s
   ContactSettings contact;
+  dynamics::SleepSettings sleep;  // "sleep": {"enabled", "speed" (m/s), "time" (s)}
   std::vector<BodySpec> bodies;
 
   /// The unit vector against gravity, along which heights are measured (+z without gravity).

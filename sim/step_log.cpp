@@ -33,6 +33,14 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) 
   }
   line["island_bodies"] = islandBodies;
   line["island_events"] = islandEvents;
+  line["sleeping"] = report.sleeping;
+  auto named = [&names](const std::vector<int>& bodyIndices) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (int i : bodyIndices) list.push_back(names[i]);
+    return list;
+  };
+  if (!report.fellAsleep.empty()) line["fell_asleep"] = named(report.fellAsleep);
+  if (!report.woke.empty()) line["woke"] = named(report.woke);
   line["bodies"] = bodies;
   line["energy"] = forOutput(world.energy());
   line["penetration"] = forOutput(report.penetration);

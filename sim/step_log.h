@@ -11,8 +11,10 @@
 namespace polysim::sim {
 
 /// One step as a log line: step, t, events (time, iterations, stopped_by, pairs with
-/// contacts), event_limit, bodies (name, position, orientation, velocity,
-/// angular_velocity), energy, penetration, solver_iterations.
+/// contacts), event_limit, island_bodies, island_events, sleeping (bodies asleep at the
+/// step's end), fell_asleep and woke (names, only when some did), bodies (name,
+/// position, orientation, velocity, angular_velocity), energy, penetration,
+/// solver_iterations.
 nlohmann::ordered_json stepToJson(const World& world, const StepReport& report);
 
 class StepLog {

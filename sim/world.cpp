@@ -8,6 +8,7 @@
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
 #include "dynamics/settings.h"
+#include "dynamics/sleep.h"
 #include "sim/islands.h"
 
 namespace polysim::sim {
@@ -30,6 +31,8 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
   }
   paths_.resize(bodies_.size());  // never resized again: the database points into it
   free_.assign(bodies_.size(), 1);
+  slowFor_.assign(bodies_.size(), 0.0);
+  asleep_.assign(bodies_.size(), 0);
   for (size_t i = 0; i < bodies_.size(); ++i) {
     paths_[i].body = &bodies_[i];
     db_.objects[i].info = &paths_[i];
@@ -39,19 +42,58 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
 }
 
 const StepReport& World::step(double dt) {
-  report_ = StepReport{report_.step + 1, 0.0, {}, {}, false, 0.0, 0};
-  std::fill(free_.begin(), free_.end(), 1);
+  StepReport next;
+  next.step = report_.step + 1;
+  report_ = std::move(next);
+  for (size_t i = 0; i < bodies_.size(); ++i) free_[i] = !asleep_[i];  // a sleeping body rests: no gravity, no path
   for (dynamics::RigidBody& b : bodies_) b.pushVelocity.setZero(), b.pushAngularVelocity.setZero();  // set by this step's solves
-  supportTouchingBodies(contacts_, dt);  // gravity into the velocities of bodies in contact; the others fly free
-  resolveContacts(contacts_, dt, true);  // the contacts the step starts with (resting, stacked)
+  std::vector<collision::PairResult> moving;  // the contacts of bodies that are awake
+  for (const collision::PairResult& p : contacts_)
+    if (awake(p.a) || awake(p.b)) moving.push_back(p);
+  supportTouchingBodies(moving, dt);  // gravity into the velocities of bodies in contact; the others fly free
+  resolveContacts(moving, dt, true);  // the contacts the step starts with (resting, stacked)
   std::vector<collision::PairResult> contactsAfter;
-  for (const std::vector<int>& island : islandsOfStep(dt)) stepIsland(island, dt, contactsAfter);
+  std::vector<char> stepped(bodies_.size(), 0);
+  for (const std::vector<int>& island : islandsOfStep(dt)) {
+    if (std::all_of(island.begin(), island.end(), [this](int i) { return asleep_[i] != 0; })) continue;
+    for (int i : island) {
+      if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
+      stepped[i] = 1;
+    }
+    stepIsland(island, dt, contactsAfter);
+    sleepIfSettled(island, dt);
+  }
+  for (const collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts
+    if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(p);
   contacts_ = std::move(contactsAfter);
+  report_.sleeping = static_cast<int>(std::count(asleep_.begin(), asleep_.end(), 1));
   const double y = dt - timeCompensation_, sum = time_ + y;  // compensated time_ += dt
   timeCompensation_ = (sum - time_) - y;
   time_ = sum;
   report_.time = time_;
   return report_;
+}
+
+void World::wake(int body) {
+  asleep_[body] = 0;
+  slowFor_[body] = 0.0;
+  report_.woke.push_back(body);
+}
+
+void World::sleepIfSettled(const std::vector<int>& island, double dt) {
+  if (!scene_.sleep.enabled) return;
+  double settled = scene_.sleep.time;
+  for (int i : island) {
+    slowFor_[i] = dynamics::slowTimeAfterStep(bodies_[i], sizes_[i], dt, slowFor_[i], scene_.sleep);
+    settled = std::min(settled, slowFor_[i]);
+  }
+  if (settled < scene_.sleep.time) return;
+  for (int i : island) {
+    asleep_[i] = 1;
+    bodies_[i].velocity.setZero();
+    bodies_[i].angularVelocity.setZero();
+    report_.fellAsleep.push_back(i);
+  }
 }
 
 std::vector<std::vector<int>> World::islandsOfStep(double duration) const {
@@ -62,7 +104,10 @@ std::vector<std::vector<int>> World::islandsOfStep(double duration) const {
     dynamic[i] = !b.isStatic;
     if (b.isStatic) continue;
     const Eigen::Vector3d gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
-    bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]), pathMotionBound(b, sizes_[i], duration, gravity));
+    // Grown by the tolerance too: bodies that end the step within it of each other (in
+    // contact) share an island, so a sleeping body never touches one that is awake.
+    bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]),
+                                pathMotionBound(b, sizes_[i], duration, gravity) + db_.tolerance);
   }
   std::vector<std::pair<int, int>> touching;
   for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
@@ -172,6 +217,8 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
     p.normalImpulse /= horizon;
     p.frictionImpulse /= horizon;
   }
+  for (const dynamics::ContactPoint& old : lastSolved_)  // sleeping pairs keep theirs for when they wake
+    if (!awake(old.a) && !awake(old.b)) points.push_back(old);
   lastSolved_ = std::move(points);
 }
 

@@ -46,6 +46,8 @@ struct StepReport {
   bool eventLimitHit = false;
   double penetration = 0.0;  // m, deepest overlap among the committed states
   int solverIterations = 0;
+  std::vector<int> fellAsleep, woke;  // body indices that fell asleep / woke in this step
+  int sleeping = 0;                   // bodies asleep at the step's end
 };
 
 class World {
@@ -63,6 +65,9 @@ class World {
   /// Kinetic plus gravitational potential energy of the dynamic bodies (J).
   double energy() const;
   bool atRest(int body) const;
+  /// The body is asleep (scene "sleep"): it keeps its pose exactly and costs nothing
+  /// until a body that moves can reach it.
+  bool asleep(int body) const { return asleep_[body] != 0; }
   /// The first time a pair was in contact (s), or a negative value if none yet.
   double firstContactTime() const { return firstContact_; }
 
@@ -94,6 +99,12 @@ class World {
   collision::TocResult detectCollisions(collision::ObjectDatabase& db);
   void commitPoses(const std::vector<int>& island, double elapsed);
   void noteContacts(const std::vector<collision::PairResult>& contacts, double at);
+  void wake(int body);
+  /// The island's bodies' slow times after a step of `dt`; when all have been slow for
+  /// the scene's sleep time, the island falls asleep (velocities zeroed, poses kept).
+  void sleepIfSettled(const std::vector<int>& island, double dt);
+  /// The body moves this step: dynamic and not asleep.
+  bool awake(int body) const { return !bodies_[body].isStatic && !asleep_[body]; }
 
   Scene scene_;
   collision::TocOptions tocOptions_;
@@ -107,7 +118,10 @@ class World {
   std::vector<PairMaterial> materials_;  // per body: its restitution and friction
   std::vector<double> sizes_;            // per body: farthest vertex from the centre of mass (m)
   std::vector<collision::PairResult> contacts_;
-  /// The step-start solve's impulses as forces (N): impulse / dt. Only that solve is kept:
+  std::vector<double> slowFor_;  // per body: how long it has been slow (s), dynamics/sleep.h
+  std::vector<char> asleep_;     // per body
+  /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
+  /// pairs from the step they fell asleep. Only the step-start solve is kept:
   /// an event's solve is mostly a collision impulse over what remains of the step, and
   /// divided by that short horizon it would warm-start the next step with many times the
   /// impulse, for the sweeps to take back.

@@ -14,7 +14,8 @@ namespace polysim::bench {
 namespace {
 
 void BM_Step(benchmark::State& state, const std::string& name) {
-  const sim::Scene scene = sim::loadScene(std::string(POLYSIM_SCENES_DIR) + "/" + name + ".json");
+  sim::Scene scene = sim::loadScene(std::string(POLYSIM_SCENES_DIR) + "/" + name + ".json");
+  scene.sleep.enabled = false;  // the awake step's cost; sleep_bench measures sleeping
   sim::World world(scene);
   for (int k = 0; k < std::lround(1.0 / scene.dt); ++k) world.step(scene.dt);  // settle
   long events = 0, steps = 0;

@@ -34,6 +34,7 @@ class ScriptedEngine : public Engine {
   double energy() const override { return script_[k_].energy; }
   double stepPenetration() const override { return script_[k_].penetration; }
   std::optional<double> firstContactTime() const override { return firstContact_; }
+  int sleepingBodies() const override { return 0; }
 
  private:
   std::vector<State> script_;

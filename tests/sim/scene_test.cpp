@@ -65,6 +65,9 @@ TEST_F(SceneFiles, LoadsWithSpecDefaults) {
   EXPECT_DOUBLE_EQ(s.contact.tolerance, 1e-4);
   EXPECT_DOUBLE_EQ(s.contact.friction, 0.5);
   EXPECT_DOUBLE_EQ(s.contact.restitution, 0.0);
+  EXPECT_TRUE(s.sleep.enabled);
+  EXPECT_DOUBLE_EQ(s.sleep.speed, 0.01);
+  EXPECT_DOUBLE_EQ(s.sleep.time, 0.5);
   ASSERT_EQ(s.bodies.size(), 2u);
   EXPECT_TRUE(s.bodies[0].isStatic);
   EXPECT_FALSE(s.bodies[1].mass.has_value());
@@ -139,6 +142,14 @@ INSTANTIATE_TEST_SUITE_P(
                   SceneFiles::withBody(cubeWith(R"([[1,3,2,0],[6,7,5,4],[4,5,1,0],[3,7,6,2],[2,6,4,0],[5,7,3,1]])") +
                                        R"(, "static": true)"),
                   "body \"box\": shape: is inside-out"},
+        Rejection{"sleep_not_an_object", R"({"sleep": true, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "sleep: must be an object"},
+        Rejection{"sleep_negative_speed", R"({"sleep": {"speed": -1}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "sleep: speed must be positive (got -1)"},
+        Rejection{"sleep_mistyped_enabled", R"({"sleep": {"enabled": "no"}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "sleep: enabled must be true or false (got a string)"},
+        Rejection{"sleep_unknown_field", R"({"sleep": {"treshold": 1}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "sleep: unknown field \"treshold\""},
         Rejection{"missing_obj_file", SceneFiles::withBody(R"("shape": {"type": "obj", "file": "nowhere.obj"})"),
                   "body \"box\": shape: cannot read"},
         Rejection{"interpenetrating_at_start", SceneFiles::withBody(R"("shape": {"type": "box", "size": [1,1,1]}, "position": [0, 0, 0.3])"),
