@@ -16,6 +16,7 @@
 #include "sim/sweep.h"
 #include "sim/sweep_csv.h"
 #include "sim/sweep_plan.h"
+#include "sim/view_page.h"
 #include "sim/whole_file.h"
 
 namespace polysim::sim {
@@ -132,6 +133,12 @@ int makeCommand(const MakeOptions& options, const std::string& outPath, std::ost
     return 0;
   }
   writeWholeFile(outPath, "the scene", [&](std::ostream& file) { file << scene.dump(1) << "\n"; });
+  return 0;
+}
+
+int viewCommand(const ViewOptions& options, std::ostream& out) {
+  const std::string page = writeViewPage(options);
+  out << nlohmann::ordered_json{{"page", page}, {"bytes", std::filesystem::file_size(page)}}.dump() << "\n";
   return 0;
 }
 

@@ -53,4 +53,8 @@ int sweepMergeCommand(const std::string& resultsDirectory, bool quick, const std
 /// or to `out`. The same options give the same bytes.
 int makeCommand(const struct MakeOptions& options, const std::string& outPath, std::ostream& out);
 
+/// `polysim view LOG... [--scene SCENE] [--out FILE.html]`: the replay page (view_page.h);
+/// prints {"page": path, "bytes": its size}.
+int viewCommand(const struct ViewOptions& options, std::ostream& out);
+
 }  // namespace polysim::sim

@@ -10,66 +10,40 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sim/log_fields.h"
+
 namespace polysim::sim {
 namespace {
 
 using nlohmann::ordered_json;
 
-// Checked access to a step line's fields: each error names where the field was looked
-// for ("line 3: event 0: pair 1") and the field, instead of reading past what is there.
-class Fields {
- public:
-  Fields(const ordered_json& object, std::string where) : object_(object), where_(std::move(where)) {
-    if (!object_.is_object()) throw std::runtime_error(where_ + ": not a JSON object");
-  }
-  const std::string& where() const { return where_; }
-  bool has(const char* key) const { return object_.contains(key); }
-  const ordered_json& any(const char* key) const {
-    if (!object_.contains(key)) throw std::runtime_error(where_ + ": no \"" + key + "\"");
-    return object_[key];
-  }
-  double number(const char* key) const { return typed(key, &ordered_json::is_number, "a number").get<double>(); }
-  long integer(const char* key) const { return typed(key, &ordered_json::is_number_integer, "a whole number").get<long>(); }
-  std::string text(const char* key) const { return typed(key, &ordered_json::is_string, "a string").get<std::string>(); }
-  const ordered_json& array(const char* key) const { return typed(key, &ordered_json::is_array, "an array"); }
-
- private:
-  const ordered_json& typed(const char* key, bool (ordered_json::*is)() const noexcept, const char* what) const {
-    const ordered_json& v = any(key);
-    if (!(v.*is)()) throw std::runtime_error(where_ + ": \"" + key + "\" is not " + what);
-    return v;
-  }
-  const ordered_json& object_;
-  std::string where_;
-};
-
 // One pair of an event as "a/b:kinds", or empty when `body` is given and not in it.
-std::string pairText(const Fields& pair, const std::optional<std::string>& body) {
+std::string pairText(const LogFields& pair, const std::optional<std::string>& body) {
   const std::string a = pair.text("a"), b = pair.text("b");
   if (body && a != *body && b != *body) return "";
   std::string kinds;
   const ordered_json& contacts = pair.has("contacts") ? pair.array("contacts") : ordered_json::array();
   for (size_t k = 0; k < contacts.size(); ++k)
-    kinds += (kinds.empty() ? "" : "+") + Fields(contacts[k], pair.where() + ": contact " + std::to_string(k)).text("type");
+    kinds += (kinds.empty() ? "" : "+") + LogFields(contacts[k], pair.where() + ": contact " + std::to_string(k)).text("type");
   return a + "/" + b + ":" + (kinds.empty() ? pair.text("status") : kinds);
 }
 
 // The rows for one step line, as flat objects of numbers and strings; `seen` is set when
 // the line holds the queried body.
-void rowsOfStep(const Fields& step, const LogQuery& q, std::vector<ordered_json>& rows, bool& seen) {
+void rowsOfStep(const LogFields& step, const LogQuery& q, std::vector<ordered_json>& rows, bool& seen) {
   const ordered_json& events = step.array("events");
   if (q.body)
     for (size_t k = 0; step.has("bodies") && k < step.array("bodies").size(); ++k)
-      seen = seen || Fields(step.array("bodies")[k], step.where() + ": body " + std::to_string(k)).text("name") == *q.body;
+      seen = seen || LogFields(step.array("bodies")[k], step.where() + ": body " + std::to_string(k)).text("name") == *q.body;
   if (q.events) {
     for (size_t k = 0; k < events.size(); ++k) {
-      const Fields e(events[k], step.where() + ": event " + std::to_string(k));
+      const LogFields e(events[k], step.where() + ": event " + std::to_string(k));
       const double t = e.number("time");
       if (t < q.from || t > q.to) continue;
       std::string pairs;
       const ordered_json& list = e.array("pairs");
       for (size_t i = 0; i < list.size(); ++i) {
-        const std::string text = pairText(Fields(list[i], e.where() + ": pair " + std::to_string(i)), q.body);
+        const std::string text = pairText(LogFields(list[i], e.where() + ": pair " + std::to_string(i)), q.body);
         if (!text.empty()) pairs += (pairs.empty() ? "" : " ") + text;
       }
       if (q.body && pairs.empty()) continue;
@@ -82,7 +56,7 @@ void rowsOfStep(const Fields& step, const LogQuery& q, std::vector<ordered_json>
   if (t < q.from || t > q.to) return;
   ordered_json row = {{"step", step.integer("step")}, {"t", t}, {"events", events.size()}};
   long tests = 0;
-  for (size_t k = 0; k < events.size(); ++k) tests += Fields(events[k], step.where() + ": event " + std::to_string(k)).integer("iterations");
+  for (size_t k = 0; k < events.size(); ++k) tests += LogFields(events[k], step.where() + ": event " + std::to_string(k)).integer("iterations");
   row["toc_tests"] = tests;
   // A figure the line does not hold is shown as null, never as a made-up 0.
   auto figure = [&step](const char* key) { return step.has(key) ? step.any(key) : ordered_json(nullptr); };
@@ -156,7 +130,7 @@ void inspectLog(const std::string& path, const LogQuery& query, std::ostream& ou
       if (in.eof()) break;
       throw std::runtime_error(where + ": not JSON, so not a step of a polysim step log");
     }
-    rowsOfStep(Fields(step, where), query, rows, bodySeen);
+    rowsOfStep(LogFields(step, where), query, rows, bodySeen);
     ++steps;
   }
   if (steps == 0) throw std::runtime_error(path + ": holds no step (not a polysim step log, or empty)");

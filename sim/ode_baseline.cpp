@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 
 #include "sim/contact_agreement.h"
 #include "sim/json_output.h"
 #include "sim/polysim_engine.h"
 #include "sim/run_record.h"
+#include "sim/step_log.h"
 
 namespace polysim::sim {
 namespace {
@@ -62,8 +64,11 @@ RunRecord runPolysimComparingContacts(const Scene& scene, const RunOptions& opti
   OdeContactProbe probe(scene);
   const double press = kOdePressFactor * scene.contact.tolerance;
   std::chrono::steady_clock::duration probing{};
+  std::unique_ptr<StepLog> log;
+  if (!options.logDirectory.empty()) log = std::make_unique<StepLog>(options.logDirectory + "/polysim.jsonl", true);
   RunRecord record = recordRun(engine, options.stepsFor(scene), options.dtFor(scene), scene.up(), [&] {
     const World& world = engine.world();
+    if (log) log->write(world, engine.lastReport());
     if (world.contacts().empty()) return;
     const auto start = std::chrono::steady_clock::now();
     agreement.countState();
@@ -117,7 +122,13 @@ nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& opti
   ContactAgreement agreement;
   const RunRecord mine = runPolysimComparingContacts(scene, options, agreement);
   OdeWorld odeWorld(scene, settings);
-  const RunRecord ode = recordRun(odeWorld, options.stepsFor(scene), options.dtFor(scene), scene.up());
+  std::unique_ptr<StepLog> odeLog;
+  if (!options.logDirectory.empty()) odeLog = std::make_unique<StepLog>(options.logDirectory + "/ode.jsonl");
+  long odeSteps = 0;
+  const RunRecord ode = recordRun(odeWorld, options.stepsFor(scene), options.dtFor(scene), scene.up(), [&] {
+    ++odeSteps;
+    if (odeLog) odeLog->write(engineStepToJson(odeWorld, odeSteps, static_cast<double>(odeSteps) * options.dtFor(scene)), scene.file);
+  });
 
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
   for (size_t i = 0; i < mine.final.size(); ++i) bodies.push_back(bodyComparison(i, mine, ode));

@@ -26,6 +26,8 @@ nlohmann::ordered_json runOde(const Scene& scene, const RunOptions& options, con
 /// - findings: plain sentences for what went wrong in either engine (overlap beyond ten
 ///   tolerances, energy gained, a body below every static body, a body drifting more than
 ///   1 cm, at-rest states that differ), so that known ODE failures are shown, not hidden.
+/// With options.logDirectory, both runs' step logs go there: polysim.jsonl (with each
+/// step's contacts) and ode.jsonl, for `polysim view`.
 nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& options, const OdeSettings& settings = {});
 
 }  // namespace polysim::sim

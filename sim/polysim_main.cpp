@@ -13,6 +13,7 @@
 #include "sim/scene_generators.h"
 #include "sim/sweep.h"
 #include "sim/sweep_plan.h"
+#include "sim/view_page.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"polysim: rigid bodies with polygon-level contact, compared against ODE"};
@@ -37,7 +38,9 @@ int main(int argc, char** argv) {
   run->add_option("SCENE", scene, "scene file (JSON)")->required();
   run->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)");
   run->add_option("--dt", runDt, "step in seconds (default: the scene's)");
-  run->add_option("--log", runOptions.logPath, "write the step log (JSON Lines) to this file");
+  CLI::Option* runLog = run->add_option("--log", runOptions.logPath, "write the step log (JSON Lines) to this file");
+  run->add_flag("--log-contacts", runOptions.logContacts, "the step log also holds each step's contacts (for polysim view)")
+      ->needs(runLog);
   run->add_option("--method", runMethod, "time-of-contact method")->check(CLI::IsMember({"bisection", "regula-falsi"}));
 
   std::string logFile;
@@ -55,6 +58,8 @@ int main(int argc, char** argv) {
   compare->add_option("SCENE", scene, "scene file (JSON)")->required();
   compare->add_option("--duration", runDuration, "simulated time in seconds (default: the scene's)");
   compare->add_option("--dt", runDt, "step in seconds (default: the scene's)");
+  compare->add_option("--log-dir", runOptions.logDirectory, "write both engines' step logs here (polysim.jsonl, ode.jsonl)")
+      ->check(CLI::ExistingDirectory);
   compare->add_option("--method", runMethod, "polysim's time-of-contact method")
       ->check(CLI::IsMember({"bisection", "regula-falsi"}));
   polysim::sim::OdeSettings ode;
@@ -88,6 +93,13 @@ int main(int argc, char** argv) {
   sweep->add_option("--solver", sweepSolver, "one run: bisection, regula-falsi, worldstep or quickstep")->needs(oneCase);
   sweep->add_option("--parameter", sweepParameter, "one run: tolerance (m) or iterations")->needs(oneCase);
   sweep->add_option("--dt", sweepDt, "one run: the step (s)")->needs(oneCase);
+
+  polysim::sim::ViewOptions viewOptions;
+  std::string viewScene;
+  CLI::App* view = app.add_subcommand("view", "one self-contained HTML page replaying step logs in the browser");
+  view->add_option("LOG", viewOptions.logs, "step log(s) of one scene; several are shown side by side")->required();
+  view->add_option("--scene", viewScene, "the scene (default: the one the first log names)");
+  view->add_option("--out", viewOptions.out, "the page to write (default: the first log with .html)");
 
   polysim::sim::MakeOptions makeOptions;
   std::string makeOut;
@@ -141,6 +153,10 @@ int main(int argc, char** argv) {
         return polysim::sim::sweepRunCommand(sweepOptions, one, sweepOut, std::cerr);
       }
       return polysim::sim::sweepCommand(sweepOptions, sweepOut, std::cout, isatty(STDERR_FILENO) ? &std::cerr : nullptr);
+    }
+    if (view->parsed()) {
+      if (!viewScene.empty()) viewOptions.scene = viewScene;
+      return polysim::sim::viewCommand(viewOptions, std::cout);
     }
     if (toc->parsed()) return polysim::sim::tocCommand(scene, interval, method, std::cout);
     if (make->parsed()) {

@@ -73,7 +73,7 @@ nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
   const long steps = options.stepsFor(scene);
   PolysimEngine engine(scene, options.method);
   std::unique_ptr<StepLog> log;
-  if (!options.logPath.empty()) log = std::make_unique<StepLog>(options.logPath);
+  if (!options.logPath.empty()) log = std::make_unique<StepLog>(options.logPath, options.logContacts);
   std::unique_ptr<ProgressBar> bar;
   if (options.progress) bar = std::make_unique<ProgressBar>(steps);
 

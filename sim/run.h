@@ -18,6 +18,8 @@ inline constexpr long kMaxRunSteps = 100'000'000;
 struct RunOptions {
   std::optional<double> duration, dt;  // s; the scene's when not given
   std::string logPath;                 // empty: no step log
+  bool logContacts = false;            // the step log holds each step's contacts (step_log.h)
+  std::string logDirectory;            // compare: both engines' step logs go here (polysim.jsonl, ode.jsonl)
   collision::TocMethod method = collision::TocMethod::Bisection;
   bool progress = false;               // a progress bar on stderr
 

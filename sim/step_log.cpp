@@ -1,12 +1,13 @@
 #include "sim/step_log.h"
 
+#include <filesystem>
 #include <stdexcept>
 
 #include "sim/json_output.h"
 
 namespace polysim::sim {
 
-nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) {
+nlohmann::ordered_json stepToJson(const World& world, const StepReport& report, bool withContacts) {
   std::vector<std::string> names;
   for (const BodySpec& b : world.scene().bodies) names.push_back(b.name);
   nlohmann::ordered_json events = nlohmann::ordered_json::array();
@@ -45,15 +46,37 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report) 
   line["energy"] = forOutput(world.energy());
   line["penetration"] = forOutput(report.penetration);
   line["solver_iterations"] = report.solverIterations;
+  if (withContacts) line["contacts"] = pairsToJson(world.contacts(), names);
   return line;
 }
 
-StepLog::StepLog(const std::string& path) : path_(path), out_(path, std::ios::trunc) {
+nlohmann::ordered_json engineStepToJson(const Engine& engine, long step, double time) {
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (const BodyState& b : engine.bodyStates())
+    bodies.push_back(bodyStateToJson(b.name, b.position, b.orientation, b.velocity, b.angularVelocity));
+  nlohmann::ordered_json line;
+  line["step"] = step;
+  line["t"] = forOutput(time);
+  line["events"] = nlohmann::ordered_json::array();
+  line["bodies"] = bodies;
+  line["energy"] = forOutput(engine.energy());
+  line["penetration"] = forOutput(engine.stepPenetration());
+  return line;
+}
+
+StepLog::StepLog(const std::string& path, bool withContacts)
+    : path_(path), out_(path, std::ios::trunc), withContacts_(withContacts) {
   if (!out_) throw std::runtime_error(path + ": cannot write the step log");
 }
 
 void StepLog::write(const World& world, const StepReport& report) {
-  out_ << stepToJson(world, report).dump() << "\n";
+  write(stepToJson(world, report, withContacts_), world.scene().file);
+}
+
+void StepLog::write(nlohmann::ordered_json line, const std::string& sceneFile) {
+  if (first_) line["scene"] = std::filesystem::absolute(sceneFile).string();
+  first_ = false;
+  out_ << line.dump() << "\n";
   out_.flush();  // every finished step readable even if the run is interrupted
   if (!out_) throw std::runtime_error(path_ + ": writing the step log failed");
 }

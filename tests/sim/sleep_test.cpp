@@ -201,6 +201,30 @@ TEST(Sleep, SeededPilesAndCupsFallAsleepWithTheirInvariants) {
   }
 }
 
+// A box sliding on the ground stops within the tolerance of a box at rest: the two are
+// in contact, so they must share an island and the contact must be reported, though
+// neither container, grown by how far its body can move, reaches the other. Where it
+// stops is taken from a run without the second box (the runs agree up to the last step).
+TEST(Sleep, ABoxThatStopsWithinTheToleranceOfAnotherIsInContactWithIt) {
+  const std::string slide = R"({"name": "slide", "dt": 0.016666666666666666, "gravity": [0, 0, -9.81], "bodies": [
+    {"name": "ground", "static": true, "shape": {"type": "box", "size": [40, 20, 1]}, "position": [0, 0, -0.5]},
+    {"name": "slider", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 0.5], "velocity": [2, 0, 0]})";
+  World alone(sceneFrom("slide_alone", slide + "]}"));
+  for (int k = 0; k < 120; ++k) alone.step(kDt);
+  ASSERT_TRUE(alone.asleep(1) || alone.atRest(1));
+  const double stop = alone.bodies()[1].position.x(), eps = alone.scene().contact.tolerance;
+  std::ostringstream wall;
+  wall.precision(17);
+  wall << R"(, {"name": "resting", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [)" << stop + 1 + 0.5 * eps
+       << ", 0, 0.5]}]}";
+  World w(sceneFrom("slide_to_rest", slide + wall.str()));
+  for (int k = 0; k < 120; ++k) w.step(kDt);
+  EXPECT_NEAR(w.bodies()[1].position.x(), stop, 1e-9);
+  bool touching = false;
+  for (const collision::PairResult& p : w.contacts()) touching = touching || (p.a == 1 && p.b == 2);
+  EXPECT_TRUE(touching) << "the slider stopped " << 0.5 * eps << " m from the box and no contact was reported";
+}
+
 // The step log names who falls asleep and who wakes, and counts the sleepers; `polysim
 // log` shows the count.
 TEST(Sleep, TheStepLogSaysWhoSleepsAndWakes) {

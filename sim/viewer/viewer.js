@@ -1,0 +1,328 @@
+// polysim view: plays step logs of one scene (sim/view_data.h describes the data). One
+// view per log, side by side, on one clock; contacts as the log reports them; the energy
+// and penetration under the views. The state drawn is written to #test-state after each
+// frame, for the headless tests (tests/sim/view_test.py).
+"use strict";
+
+const data = JSON.parse(document.getElementById("polysim-data").textContent);
+const FLOATS = 10;  // per body and frame: position 3, orientation [w x y z] 4, velocity 3
+const STATIC_COLOUR = 0x9a9a9a, EDGE_COLOUR = 0x1a1a1a, BACKGROUND = 0x1d2330;
+const CONTACT_COLOUR = 0x35e0ff, NORMAL_COLOUR = 0xff3df0;
+
+function decodePoses(text) {
+  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  return new Float32Array(bytes.buffer);
+}
+
+// A body's mesh: its faces as triangle fans (flat shaded), its polygon edges as lines.
+function bodyObject(body, colour) {
+  const v = body.vertices, triangles = [], edges = [];
+  const at = (i) => [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
+  for (const face of body.faces) {
+    for (let k = 1; k + 1 < face.length; ++k) triangles.push(...at(face[0]), ...at(face[k]), ...at(face[k + 1]));
+    for (let k = 0; k < face.length; ++k) edges.push(...at(face[k]), ...at(face[(k + 1) % face.length]));
+  }
+  const faces = new THREE.BufferGeometry();
+  faces.setAttribute("position", new THREE.Float32BufferAttribute(triangles, 3));
+  faces.computeVertexNormals();
+  const mesh = new THREE.Mesh(faces, new THREE.MeshLambertMaterial({
+    color: colour, flatShading: true, side: THREE.DoubleSide,
+    polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1}));
+  const lines = new THREE.BufferGeometry();
+  lines.setAttribute("position", new THREE.Float32BufferAttribute(edges, 3));
+  const group = new THREE.Group();
+  group.add(mesh, new THREE.LineSegments(lines, new THREE.LineBasicMaterial({color: EDGE_COLOUR})));
+  group.position.set(...body.position);
+  const q = body.orientation;
+  group.quaternion.set(q[1], q[2], q[3], q[0]);
+  mesh.userData.body = body;
+  return {group, mesh};
+}
+
+function dynamicColour(k) {
+  return new THREE.Color().setHSL((0.08 + 0.17 * k) % 1, 0.85, 0.55);
+}
+
+// Where the camera looks: the box the dynamic bodies sweep over the run, or the statics.
+function sceneBounds() {
+  const box = new THREE.Box3();
+  for (const run of data.runs) {
+    const poses = run.decoded;
+    for (let i = 0; i < poses.length; i += FLOATS) box.expandByPoint(new THREE.Vector3(poses[i], poses[i + 1], poses[i + 2]));
+  }
+  let reach = 0.5;
+  for (const b of data.scene.bodies) {
+    if (b.static) continue;
+    for (let i = 0; i < b.vertices.length; i += 3) reach = Math.max(reach, Math.hypot(b.vertices[i], b.vertices[i + 1], b.vertices[i + 2]));
+  }
+  if (box.isEmpty()) {
+    for (const b of data.scene.bodies) box.expandByPoint(new THREE.Vector3(...b.position));
+  }
+  return box.expandByScalar(reach);
+}
+
+function frameAt(run, t) {  // the last frame at or before t
+  let lo = 0, hi = run.frames - 1;
+  while (lo < hi) {
+    const mid = (lo + hi + 1) >> 1;
+    if (run.times[mid] <= t + 1e-12) lo = mid; else hi = mid - 1;
+  }
+  return lo;
+}
+
+// The contacts of one frame: areas filled and outlined, lines, points, and each
+// contact's normal as an arrow from the middle of its points.
+function contactObjects(pairs, scale) {
+  const group = new THREE.Group();
+  const material = new THREE.LineBasicMaterial({color: CONTACT_COLOUR, depthTest: false});
+  for (const pair of pairs) {
+    for (const c of pair.contacts) {
+      const points = c.points.map((p) => new THREE.Vector3(...p));
+      const middle = points.reduce((s, p) => s.add(p), new THREE.Vector3()).multiplyScalar(1 / points.length);
+      if (c.type === "area") {
+        const fill = [];
+        for (let k = 1; k + 1 < points.length; ++k) fill.push(points[0], points[k], points[k + 1]);
+        const surface = new THREE.BufferGeometry().setFromPoints(fill);
+        group.add(new THREE.Mesh(surface, new THREE.MeshBasicMaterial({
+          color: CONTACT_COLOUR, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthTest: false})));
+        group.add(new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(points), material));
+      } else if (c.type === "line") {
+        group.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(points), material));
+      }
+      group.add(new THREE.Points(new THREE.BufferGeometry().setFromPoints(points),
+        new THREE.PointsMaterial({color: CONTACT_COLOUR, size: 6, sizeAttenuation: false, depthTest: false})));
+      const arrow = new THREE.ArrowHelper(new THREE.Vector3(...c.normal), middle, 0.3 * scale, NORMAL_COLOUR);
+      arrow.line.material.depthTest = arrow.cone.material.depthTest = false;  // seen through the body it leaves
+      group.add(arrow);
+    }
+  }
+  group.renderOrder = 1;
+  return group;
+}
+
+function makeView(run, index, camera) {
+  const element = document.createElement("div");
+  element.className = "view";
+  element.innerHTML = `<canvas></canvas><div class="label"></div>`;
+  element.querySelector(".label").textContent = run.label;
+  document.getElementById("views").appendChild(element);
+  const canvas = element.querySelector("canvas");
+  const renderer = new THREE.WebGLRenderer({canvas, antialias: true, preserveDrawingBuffer: true});
+  renderer.setPixelRatio(window.devicePixelRatio);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(BACKGROUND);
+  scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+  const sun = new THREE.DirectionalLight(0xffffff, 0.6);
+  sun.position.set(1, -2, 3);
+  scene.add(sun);
+  const bodies = data.scene.bodies.map((b, i) => {
+    const slot = run.dynamic.indexOf(i);
+    const made = bodyObject(b, slot < 0 ? STATIC_COLOUR : dynamicColour(slot));
+    made.mesh.userData.slot = slot;
+    scene.add(made.group);
+    return made;
+  });
+  const controls = new THREE.OrbitControls(camera, canvas);
+  return {run, index, element, canvas, renderer, scene, bodies, controls, contacts: null, frame: -1};
+}
+
+const views = [];
+const state = {t: 0, playing: false, speed: 1, showContacts: true, end: 0, last: null};
+
+function poseOf(view, slot, frame) {
+  const p = view.run.decoded, at = (frame * view.run.dynamic.length + slot) * FLOATS;
+  return {position: [p[at], p[at + 1], p[at + 2]], orientation: [p[at + 3], p[at + 4], p[at + 5], p[at + 6]],
+          velocity: [p[at + 7], p[at + 8], p[at + 9]]};
+}
+
+function showFrame(view, frame, scale) {
+  view.frame = frame;
+  view.bodies.forEach((b, i) => {
+    const slot = b.mesh.userData.slot;
+    if (slot < 0) return;
+    const pose = poseOf(view, slot, frame), q = pose.orientation;
+    b.group.position.set(...pose.position);
+    b.group.quaternion.set(q[1], q[2], q[3], q[0]);
+  });
+  if (view.contacts) view.scene.remove(view.contacts);
+  view.contacts = null;
+  if (state.showContacts && view.run.contacts) {
+    view.contacts = contactObjects(view.run.contacts[frame], scale);
+    view.scene.add(view.contacts);
+  }
+}
+
+function resize(camera) {
+  for (const v of views) {
+    const w = v.element.clientWidth, h = v.element.clientHeight;
+    v.renderer.setSize(w, h, false);
+    camera.aspect = w / h;
+  }
+  camera.updateProjectionMatrix();
+  for (const id of ["timeline", "plot"]) {
+    const c = document.getElementById(id);
+    c.width = c.clientWidth;
+  }
+}
+
+function drawTimeline() {
+  const c = document.getElementById("timeline"), g = c.getContext("2d");
+  g.fillStyle = "#262d3d";
+  g.fillRect(0, 0, c.width, c.height);
+  const x = (t) => (t / state.end) * (c.width - 1);
+  data.runs.forEach((run, r) => {
+    g.strokeStyle = r === 0 ? "#ff6a3d" : "#ffd23d";
+    const top = (r * c.height) / data.runs.length, h = c.height / data.runs.length;
+    for (const t of run.events) {
+      g.beginPath();
+      g.moveTo(x(t) + 0.5, top);
+      g.lineTo(x(t) + 0.5, top + h);
+      g.stroke();
+    }
+  });
+  g.fillStyle = "#ffffff";
+  g.fillRect(x(state.t) - 1, 0, 3, c.height);
+}
+
+function drawPlot() {
+  const c = document.getElementById("plot"), g = c.getContext("2d");
+  g.fillStyle = "#1f2535";
+  g.fillRect(0, 0, c.width, c.height);
+  const finite = (list) => list.filter((v) => v !== null);
+  const energies = data.runs.flatMap((r) => finite(r.energy)), depths = data.runs.flatMap((r) => finite(r.penetration));
+  const eMin = Math.min(...energies), eMax = Math.max(...energies), dMax = Math.max(1e-12, ...depths);
+  const x = (t) => (t / state.end) * (c.width - 1), pad = 14;
+  const line = (run, values, low, high, colour, dashed) => {
+    g.strokeStyle = colour;
+    g.setLineDash(dashed ? [5, 4] : []);
+    g.beginPath();
+    let pen = false;
+    values.forEach((v, k) => {
+      if (v === null) { pen = false; return; }
+      const y = c.height - pad - ((v - low) / (high - low || 1)) * (c.height - 2 * pad);
+      if (pen) g.lineTo(x(run.times[k]), y); else g.moveTo(x(run.times[k]), y);
+      pen = true;
+    });
+    g.stroke();
+  };
+  data.runs.forEach((run, r) => {
+    line(run, run.energy, eMin, eMax, "#6fb3ff", r > 0);
+    line(run, run.penetration, 0, dMax, "#ff5a5a", r > 0);
+  });
+  g.setLineDash([]);
+  g.fillStyle = "#dde3ee";
+  g.fillText(`energy ${eMin.toPrecision(4)} .. ${eMax.toPrecision(4)} J (blue)   penetration 0 .. ${dMax.toExponential(2)} m (red)` +
+             (data.runs.length > 1 ? `   dashed: ${data.runs[1].label}` : ""), 6, 11);
+  g.fillStyle = "#ffffff";
+  g.fillRect(x(state.t) - 1, 0, 2, c.height);
+}
+
+function screenOf(view, camera, position) {
+  const p = new THREE.Vector3(...position).project(camera), box = view.canvas.getBoundingClientRect();
+  return [box.left + ((p.x + 1) / 2) * box.width, box.top + ((1 - p.y) / 2) * box.height];
+}
+
+function writeTestState(camera) {
+  const out = {errors: window.polysimErrors, t: state.t, runs: []};
+  for (const v of views) {
+    const bodies = v.run.dynamic.map((i, slot) => {
+      const pose = poseOf(v, slot, v.frame);
+      return {name: data.scene.bodies[i].name, position: pose.position, screen: screenOf(v, camera, pose.position)};
+    });
+    const contacts = v.run.contacts && state.showContacts ? v.run.contacts[v.frame] : [];
+    const drawn = v.contacts ? v.contacts.children.length : 0;
+    out.runs.push({label: v.run.label, frame: v.frame, time: v.run.times[v.frame], bodies, contacts, drawnContactObjects: drawn});
+  }
+  document.getElementById("test-state").textContent = JSON.stringify(out);
+}
+
+function render(camera, scale) {
+  for (const v of views) {
+    const frame = frameAt(v.run, state.t);
+    if (frame !== v.frame) showFrame(v, frame, scale);
+    v.renderer.render(v.scene, camera);
+  }
+  const run = data.runs[0], frame = frameAt(run, state.t);
+  document.getElementById("slider").value = frame;
+  document.getElementById("clock").textContent = `t = ${run.times[frame].toFixed(4)} s  step ${frame}`;
+  drawTimeline();
+  drawPlot();
+  writeTestState(camera);
+}
+
+function showInfo(view, mesh) {
+  const body = mesh.userData.body, slot = mesh.userData.slot;
+  if (slot < 0) {
+    document.getElementById("info").textContent = `${body.name} (static)  position ${body.position.join(", ")}`;
+    return;
+  }
+  const pose = poseOf(view, slot, view.frame), f = (v) => v.map((x) => x.toFixed(5)).join(", ");
+  document.getElementById("info").textContent =
+    `${body.name} (${view.run.label}, t = ${view.run.times[view.frame].toFixed(4)} s)\n` +
+    `position [${f(pose.position)}] m  orientation [${f(pose.orientation)}]  velocity [${f(pose.velocity)}] m/s`;
+}
+
+function start() {
+  for (const run of data.runs) run.decoded = decodePoses(run.poses);
+  state.end = Math.max(...data.runs.map((r) => r.times[r.frames - 1]));
+  const bounds = sceneBounds(), centre = bounds.getCenter(new THREE.Vector3());
+  const radius = bounds.getSize(new THREE.Vector3()).length() / 2, scale = Math.max(0.2, Math.min(radius / 4, 2));
+  const camera = new THREE.PerspectiveCamera(40, 1, radius / 100, radius * 100);
+  camera.up.set(0, 0, 1);
+  const distance = (1.15 * radius) / Math.sin((20 * Math.PI) / 180);
+  camera.position.copy(centre).add(new THREE.Vector3(0.55, -1.0, 0.5).normalize().multiplyScalar(distance));
+  data.runs.forEach((run, i) => views.push(makeView(run, i, camera)));
+  for (const v of views) {
+    v.controls.target.copy(centre);
+    v.controls.update();
+    v.controls.addEventListener("change", () => render(camera, scale));
+    v.canvas.addEventListener("click", (e) => {
+      const box = v.canvas.getBoundingClientRect();
+      const mouse = new THREE.Vector2(((e.clientX - box.left) / box.width) * 2 - 1, -((e.clientY - box.top) / box.height) * 2 + 1);
+      const ray = new THREE.Raycaster();
+      ray.setFromCamera(mouse, camera);
+      const hit = ray.intersectObjects(v.bodies.map((b) => b.mesh))[0];
+      if (hit) showInfo(v, hit.object);
+    });
+  }
+  const slider = document.getElementById("slider");
+  slider.max = data.runs[0].frames - 1;
+  slider.addEventListener("input", () => { state.t = data.runs[0].times[Number(slider.value)]; render(camera, scale); });
+  document.getElementById("speed").addEventListener("change", (e) => { state.speed = Number(e.target.value); });
+  document.getElementById("showContacts").addEventListener("change", (e) => {
+    state.showContacts = e.target.checked;
+    for (const v of views) v.frame = -1;
+    render(camera, scale);
+  });
+  document.getElementById("timeline").addEventListener("click", (e) => {
+    state.t = (e.offsetX / e.target.clientWidth) * state.end;
+    render(camera, scale);
+  });
+  const play = document.getElementById("play");
+  play.addEventListener("click", () => {
+    state.playing = !state.playing;
+    if (state.playing && state.t >= state.end) state.t = 0;
+    play.textContent = state.playing ? "pause" : "play";
+    state.last = null;
+  });
+  // #t=1.5 opens the page at that time (links, tests); #play starts playing.
+  const hash = new URLSearchParams(location.hash.slice(1));
+  if (hash.has("t")) state.t = Math.min(state.end, Math.max(0, Number(hash.get("t"))));
+  if (hash.has("contacts")) document.getElementById("showContacts").checked = state.showContacts = hash.get("contacts") !== "0";
+  window.addEventListener("resize", () => { resize(camera); render(camera, scale); });
+  resize(camera);
+  render(camera, scale);
+  if (hash.has("play")) play.click();
+  const tick = (now) => {
+    if (state.playing) {
+      if (state.last !== null) state.t = Math.min(state.end, state.t + ((now - state.last) / 1000) * state.speed);
+      state.last = now;
+      if (state.t >= state.end) play.click();
+      render(camera, scale);
+    }
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+}
+
+start();
