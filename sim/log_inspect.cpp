@@ -66,6 +66,8 @@ void rowsOfStep(const LogFields& step, const LogQuery& q, std::vector<ordered_js
   row["islands"] = step.has("island_events") ? ordered_json(step.array("island_events").size()) : ordered_json(nullptr);
   row["island_events"] = figure("island_events");
   row["sleeping"] = figure("sleeping");
+  // Pairs in contact at the step's end, in a log written with --log-contacts.
+  row["contacts"] = step.has("contacts") ? nlohmann::ordered_json(step.array("contacts").size()) : nlohmann::ordered_json(nullptr);
   if (q.body && step.has("bodies")) {
     for (const ordered_json& b : step.array("bodies"))
       if (b.value("name", "") == *q.body) {

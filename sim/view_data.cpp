@@ -47,6 +47,29 @@ std::vector<ordered_json> readLines(const std::string& path) {
   return lines;
 }
 
+// A step's contacts as the page draws them: per pair a and b, per contact its type,
+// normal and points (the gaps and status stay in the log).
+ordered_json contactsToDraw(const LogFields& step) {
+  ordered_json pairs = ordered_json::array();
+  const ordered_json& list = step.array("contacts");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const LogFields pair(list[i], step.where() + ": contact pair " + std::to_string(i));
+    ordered_json contacts = ordered_json::array();
+    const ordered_json& cs = pair.array("contacts");
+    for (size_t k = 0; k < cs.size(); ++k) {
+      const LogFields c(cs[k], pair.where() + ": contact " + std::to_string(k));
+      const ordered_json& points = c.array("points");
+      for (size_t j = 0; j < points.size(); ++j)
+        if (!points[j].is_array() || points[j].size() != 3 || !points[j][0].is_number() || !points[j][1].is_number() ||
+            !points[j][2].is_number())
+          throw std::runtime_error(c.where() + ": point " + std::to_string(j) + " is not 3 numbers");
+      contacts.push_back({{"type", c.text("type")}, {"normal", c.numbers("normal", 3)}, {"points", points}});
+    }
+    pairs.push_back({{"a", pair.text("a")}, {"b", pair.text("b")}, {"contacts", contacts}});
+  }
+  return pairs;
+}
+
 }  // namespace
 
 std::string base64(const unsigned char* bytes, size_t size) {
@@ -98,7 +121,10 @@ ordered_json logToViewJson(const std::string& logPath, const Scene& scene) {
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> times{0.0}, energy{nan}, penetration{0.0}, events;
-  ordered_json contacts = ordered_json::array({ordered_json::array()});
+  // Contacts, kept once per run of frames that share them (a resting or sleeping scene
+  // repeats the same contacts every step): sets, and the set of each frame.
+  ordered_json contactSets = ordered_json::array({ordered_json::array()});
+  std::vector<size_t> contactSetOf{0};
   bool anyContacts = false;
   for (size_t n = 0; n < lines.size(); ++n) {
     const LogFields step(lines[n], logPath + " line " + std::to_string(n + 1));
@@ -109,7 +135,9 @@ ordered_json logToViewJson(const std::string& logPath, const Scene& scene) {
     for (size_t e = 0; e < stepEvents.size(); ++e)
       events.push_back(LogFields(stepEvents[e], step.where() + ": event " + std::to_string(e)).number("time"));
     anyContacts = anyContacts || step.has("contacts");
-    contacts.push_back(step.has("contacts") ? step.array("contacts") : ordered_json::array());
+    const ordered_json drawn = step.has("contacts") ? contactsToDraw(step) : ordered_json::array();
+    if (drawn != contactSets.back()) contactSets.push_back(drawn);
+    contactSetOf.push_back(contactSets.size() - 1);
     const ordered_json& list = step.array("bodies");
     std::vector<char> seen(bodies, 0);
     for (size_t j = 0; j < list.size(); ++j) {
@@ -144,7 +172,8 @@ ordered_json logToViewJson(const std::string& logPath, const Scene& scene) {
           {"penetration", numbersOrNull(penetration)},
           {"events", events},
           {"poses", base64(bytes.data(), bytes.size())},
-          {"contacts", anyContacts ? contacts : ordered_json(nullptr)}};
+          {"contactSets", anyContacts ? contactSets : ordered_json(nullptr)},
+          {"contactSetOf", contactSetOf}};
 }
 
 std::string sceneNamedByLog(const std::string& logPath) {

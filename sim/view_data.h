@@ -21,8 +21,10 @@ nlohmann::ordered_json sceneToViewJson(const Scene& scene);
 /// - dynamic: the scene indices of the dynamic bodies, in the order of
 /// - poses: base64 of little-endian float32, per frame and dynamic body: position (3),
 ///   orientation [w, x, y, z] (4), velocity (3);
-/// - contacts: per frame, the pairs in contact as the log holds them (`contacts`, written
-///   by `polysim run --log-contacts`), or null when the log holds none.
+/// - contactSets: the distinct sets of contacts the log holds (`contacts`, written by
+///   `polysim run --log-contacts`; per pair a, b and per contact type, normal, points),
+///   or null when it holds none; contactSetOf: per frame, the index of its set (a resting
+///   scene repeats one set, so a 1000-box log stays small).
 /// Throws std::runtime_error naming the log, the line and the field when a line is not a
 /// step (a line cut short mid-write included: the page would end early without a word),
 /// when the log has no step, and when its bodies are not the scene's dynamic bodies

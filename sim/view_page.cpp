@@ -61,6 +61,7 @@ std::string writeViewPage(const ViewOptions& options) {
   std::string page = viewer::kPage;
   fill(page, "THREE", readThreeJs("three.min.js"));
   fill(page, "ORBIT", readThreeJs("examples/js/controls/OrbitControls.js"));
+  fill(page, "DRAWING", viewer::kDrawing);
   fill(page, "VIEWER", viewer::kScript);
   fill(page, "DATA", scriptSafe(data.dump()));  // last: the data may hold any marker's text
   const std::string out =

@@ -15,6 +15,7 @@ cmake --build build-sanitize -j2
 # 20-box stack alone would take 16 minutes); they run in the optimized pass above, and
 # the stack code paths are exercised here by the pyramid and the ODE stack comparison.
 # The chart test is Python drawing the quick sweep, which Sweep.* already runs here; the
-# Slurm test starts daemons around the same planned runs that the GNU parallel test runs here.
+# Slurm test starts daemons around the same planned runs that the GNU parallel test runs here;
+# the viewer test spends its time in Chromium, and ViewData.* / ViewLog.* read its logs here.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|StackOf40|Dominoes)'
+  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^View\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|StackOf40|Dominoes)'

@@ -6,41 +6,11 @@
 
 const data = JSON.parse(document.getElementById("polysim-data").textContent);
 const FLOATS = 10;  // per body and frame: position 3, orientation [w x y z] 4, velocity 3
-const STATIC_COLOUR = 0x9a9a9a, EDGE_COLOUR = 0x1a1a1a, BACKGROUND = 0x1d2330;
-const CONTACT_COLOUR = 0x35e0ff, NORMAL_COLOUR = 0xff3df0;
+const BACKGROUND = 0x1d2330;
 
 function decodePoses(text) {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
   return new Float32Array(bytes.buffer);
-}
-
-// A body's mesh: its faces as triangle fans (flat shaded), its polygon edges as lines.
-function bodyObject(body, colour) {
-  const v = body.vertices, triangles = [], edges = [];
-  const at = (i) => [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
-  for (const face of body.faces) {
-    for (let k = 1; k + 1 < face.length; ++k) triangles.push(...at(face[0]), ...at(face[k]), ...at(face[k + 1]));
-    for (let k = 0; k < face.length; ++k) edges.push(...at(face[k]), ...at(face[(k + 1) % face.length]));
-  }
-  const faces = new THREE.BufferGeometry();
-  faces.setAttribute("position", new THREE.Float32BufferAttribute(triangles, 3));
-  faces.computeVertexNormals();
-  const mesh = new THREE.Mesh(faces, new THREE.MeshLambertMaterial({
-    color: colour, flatShading: true, side: THREE.DoubleSide,
-    polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1}));
-  const lines = new THREE.BufferGeometry();
-  lines.setAttribute("position", new THREE.Float32BufferAttribute(edges, 3));
-  const group = new THREE.Group();
-  group.add(mesh, new THREE.LineSegments(lines, new THREE.LineBasicMaterial({color: EDGE_COLOUR})));
-  group.position.set(...body.position);
-  const q = body.orientation;
-  group.quaternion.set(q[1], q[2], q[3], q[0]);
-  mesh.userData.body = body;
-  return {group, mesh};
-}
-
-function dynamicColour(k) {
-  return new THREE.Color().setHSL((0.08 + 0.17 * k) % 1, 0.85, 0.55);
 }
 
 // Where the camera looks: the box the dynamic bodies sweep over the run, or the statics.
@@ -70,36 +40,6 @@ function frameAt(run, t) {  // the last frame at or before t
   return lo;
 }
 
-// The contacts of one frame: areas filled and outlined, lines, points, and each
-// contact's normal as an arrow from the middle of its points.
-function contactObjects(pairs, scale) {
-  const group = new THREE.Group();
-  const material = new THREE.LineBasicMaterial({color: CONTACT_COLOUR, depthTest: false});
-  for (const pair of pairs) {
-    for (const c of pair.contacts) {
-      const points = c.points.map((p) => new THREE.Vector3(...p));
-      const middle = points.reduce((s, p) => s.add(p), new THREE.Vector3()).multiplyScalar(1 / points.length);
-      if (c.type === "area") {
-        const fill = [];
-        for (let k = 1; k + 1 < points.length; ++k) fill.push(points[0], points[k], points[k + 1]);
-        const surface = new THREE.BufferGeometry().setFromPoints(fill);
-        group.add(new THREE.Mesh(surface, new THREE.MeshBasicMaterial({
-          color: CONTACT_COLOUR, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthTest: false})));
-        group.add(new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(points), material));
-      } else if (c.type === "line") {
-        group.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(points), material));
-      }
-      group.add(new THREE.Points(new THREE.BufferGeometry().setFromPoints(points),
-        new THREE.PointsMaterial({color: CONTACT_COLOUR, size: 6, sizeAttenuation: false, depthTest: false})));
-      const arrow = new THREE.ArrowHelper(new THREE.Vector3(...c.normal), middle, 0.3 * scale, NORMAL_COLOUR);
-      arrow.line.material.depthTest = arrow.cone.material.depthTest = false;  // seen through the body it leaves
-      group.add(arrow);
-    }
-  }
-  group.renderOrder = 1;
-  return group;
-}
-
 function makeView(run, index, camera) {
   const element = document.createElement("div");
   element.className = "view";
@@ -115,19 +55,20 @@ function makeView(run, index, camera) {
   const sun = new THREE.DirectionalLight(0xffffff, 0.6);
   sun.position.set(1, -2, 3);
   scene.add(sun);
-  const bodies = data.scene.bodies.map((b, i) => {
-    const slot = run.dynamic.indexOf(i);
-    const made = bodyObject(b, slot < 0 ? STATIC_COLOUR : dynamicColour(slot));
-    made.mesh.userData.slot = slot;
-    scene.add(made.group);
-    return made;
-  });
+  const statics = data.scene.bodies.filter((b) => b.static).map(staticObject);
+  for (const s of statics) scene.add(s.group);
+  const dynamic = new DynamicBodies(run.dynamic.map((i) => data.scene.bodies[i]));
+  scene.add(dynamic.mesh, dynamic.edges);
   const controls = new THREE.OrbitControls(camera, canvas);
-  return {run, index, element, canvas, renderer, scene, bodies, controls, contacts: null, frame: -1};
+  return {run, index, element, canvas, renderer, scene, statics, dynamic, controls, contacts: null, contactSet: -1, frame: -1};
 }
 
 const views = [];
 const state = {t: 0, playing: false, speed: 1, showContacts: true, end: 0, last: null};
+
+function contactsAt(run, frame) {
+  return run.contactSets[run.contactSetOf[frame]];
+}
 
 function poseOf(view, slot, frame) {
   const p = view.run.decoded, at = (frame * view.run.dynamic.length + slot) * FLOATS;
@@ -136,20 +77,21 @@ function poseOf(view, slot, frame) {
 }
 
 function showFrame(view, frame, scale) {
+  const began = performance.now();
   view.frame = frame;
-  view.bodies.forEach((b, i) => {
-    const slot = b.mesh.userData.slot;
-    if (slot < 0) return;
-    const pose = poseOf(view, slot, frame), q = pose.orientation;
-    b.group.position.set(...pose.position);
-    b.group.quaternion.set(q[1], q[2], q[3], q[0]);
-  });
-  if (view.contacts) view.scene.remove(view.contacts);
-  view.contacts = null;
-  if (state.showContacts && view.run.contacts) {
-    view.contacts = contactObjects(view.run.contacts[frame], scale);
-    view.scene.add(view.contacts);
+  view.dynamic.place((slot) => poseOf(view, slot, frame));
+  // The same set of contacts as the frame before (a resting scene): keep what is drawn.
+  const set = state.showContacts && view.run.contactSets ? view.run.contactSetOf[frame] : -1;
+  if (set !== view.contactSet) {
+    if (view.contacts) {
+      view.scene.remove(view.contacts);
+      view.contacts.traverse((o) => o.geometry && o.geometry.dispose());  // free the GPU buffers
+    }
+    view.contacts = set < 0 ? null : contactObjects(view.run.contactSets[set], scale);
+    if (view.contacts) view.scene.add(view.contacts);
+    view.contactSet = set;
   }
+  state.frameMs = performance.now() - began;  // the script's share of a frame change (the GPU's is not in it)
 }
 
 function resize(camera) {
@@ -223,20 +165,25 @@ function screenOf(view, camera, position) {
 }
 
 function writeTestState(camera) {
-  const out = {errors: window.polysimErrors, t: state.t, runs: []};
+  // The camera as a matrix from world to clip space (column-major), so that a test can
+  // project the logged poses itself.
+  const viewProjection = camera.projectionMatrix.clone().multiply(camera.matrixWorldInverse).elements;
+  const out = {errors: window.polysimErrors, t: state.t, readyMs: state.readyMs, renderMs: state.renderMs, frameMs: state.frameMs, viewProjection, runs: []};
   for (const v of views) {
     const bodies = v.run.dynamic.map((i, slot) => {
       const pose = poseOf(v, slot, v.frame);
       return {name: data.scene.bodies[i].name, position: pose.position, screen: screenOf(v, camera, pose.position)};
     });
-    const contacts = v.run.contacts && state.showContacts ? v.run.contacts[v.frame] : [];
+    const contacts = v.run.contactSets && state.showContacts ? contactsAt(v.run, v.frame) : [];
     const drawn = v.contacts ? v.contacts.children.length : 0;
-    out.runs.push({label: v.run.label, frame: v.frame, time: v.run.times[v.frame], bodies, contacts, drawnContactObjects: drawn});
+    const box = v.canvas.getBoundingClientRect(), canvas = [box.left, box.top, box.width, box.height];
+    out.runs.push({label: v.run.label, frame: v.frame, time: v.run.times[v.frame], canvas, bodies, contacts, drawnContactObjects: drawn});
   }
   document.getElementById("test-state").textContent = JSON.stringify(out);
 }
 
 function render(camera, scale) {
+  const began = performance.now();
   for (const v of views) {
     const frame = frameAt(v.run, state.t);
     if (frame !== v.frame) showFrame(v, frame, scale);
@@ -247,18 +194,22 @@ function render(camera, scale) {
   document.getElementById("clock").textContent = `t = ${run.times[frame].toFixed(4)} s  step ${frame}`;
   drawTimeline();
   drawPlot();
-  writeTestState(camera);
+  state.renderMs = performance.now() - began;
+  if (state.readyMs === undefined) state.readyMs = performance.now();  // since the page began loading
+  if (!state.playing) writeTestState(camera);  // a 1000-body frame's state is large: not at every played frame
 }
 
-function showInfo(view, mesh) {
-  const body = mesh.userData.body, slot = mesh.userData.slot;
-  if (slot < 0) {
-    document.getElementById("info").textContent = `${body.name} (static)  position ${body.position.join(", ")}`;
+// What a click on a body shows: a dynamic body's pose and velocity at the frame shown.
+function showInfo(view, hit) {
+  const info = document.getElementById("info");
+  if (hit.object !== view.dynamic.mesh) {
+    const body = hit.object.userData.body;
+    info.textContent = `${body.name} (static)  position ${body.position.join(", ")}`;
     return;
   }
+  const slot = view.dynamic.triangleSlot[hit.faceIndex], body = data.scene.bodies[view.run.dynamic[slot]];
   const pose = poseOf(view, slot, view.frame), f = (v) => v.map((x) => x.toFixed(5)).join(", ");
-  document.getElementById("info").textContent =
-    `${body.name} (${view.run.label}, t = ${view.run.times[view.frame].toFixed(4)} s)\n` +
+  info.textContent = `${body.name} (${view.run.label}, t = ${view.run.times[view.frame].toFixed(4)} s)\n` +
     `position [${f(pose.position)}] m  orientation [${f(pose.orientation)}]  velocity [${f(pose.velocity)}] m/s`;
 }
 
@@ -281,8 +232,8 @@ function start() {
       const mouse = new THREE.Vector2(((e.clientX - box.left) / box.width) * 2 - 1, -((e.clientY - box.top) / box.height) * 2 + 1);
       const ray = new THREE.Raycaster();
       ray.setFromCamera(mouse, camera);
-      const hit = ray.intersectObjects(v.bodies.map((b) => b.mesh))[0];
-      if (hit) showInfo(v, hit.object);
+      const hit = ray.intersectObjects([v.dynamic.mesh, ...v.statics.map((b) => b.mesh)])[0];
+      if (hit) showInfo(v, hit);
     });
   }
   const slider = document.getElementById("slider");
@@ -291,7 +242,7 @@ function start() {
   document.getElementById("speed").addEventListener("change", (e) => { state.speed = Number(e.target.value); });
   document.getElementById("showContacts").addEventListener("change", (e) => {
     state.showContacts = e.target.checked;
-    for (const v of views) v.frame = -1;
+    for (const v of views) v.frame = -1;  // redrawn with or without them
     render(camera, scale);
   });
   document.getElementById("timeline").addEventListener("click", (e) => {
@@ -305,10 +256,16 @@ function start() {
     play.textContent = state.playing ? "pause" : "play";
     state.last = null;
   });
-  // #t=1.5 opens the page at that time (links, tests); #play starts playing.
+  // #t=1.5 opens the page at that time (links, tests); #play starts playing; #contacts=0
+  // hides the contacts.
   const hash = new URLSearchParams(location.hash.slice(1));
   if (hash.has("t")) state.t = Math.min(state.end, Math.max(0, Number(hash.get("t"))));
   if (hash.has("contacts")) document.getElementById("showContacts").checked = state.showContacts = hash.get("contacts") !== "0";
+  if (hash.has("size")) {  // #size=800x400: views of a fixed size (screenshots, tests), whatever the window
+    const [w, h] = hash.get("size").split("x").map(Number);
+    document.getElementById("views").style.height = `${h}px`;
+    for (const v of views) v.element.style.flex = `0 0 ${w}px`;
+  }
   window.addEventListener("resize", () => { resize(camera); render(camera, scale); });
   resize(camera);
   render(camera, scale);
