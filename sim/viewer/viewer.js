@@ -213,6 +213,25 @@ function showInfo(view, hit) {
     `position [${f(pose.position)}] m  orientation [${f(pose.orientation)}]  velocity [${f(pose.velocity)}] m/s`;
 }
 
+// The camera looks at the bodies from the side and above; where a static body (a pen's
+// wall, a cup's rim) stands between it and them, from higher up, until none does.
+function placeCamera(camera, centre, distance, radius) {
+  const statics = data.scene.bodies.filter((b) => b.static).map((b) => {
+    const made = staticObject(b);
+    made.group.updateMatrixWorld(true);
+    return made.mesh;
+  });
+  const ray = new THREE.Raycaster();
+  for (const degrees of [25, 40, 55, 70, 85]) {
+    const elevation = (degrees * Math.PI) / 180;
+    const towards = new THREE.Vector3(0.48 * Math.cos(elevation), -0.88 * Math.cos(elevation), Math.sin(elevation)).normalize();
+    camera.position.copy(centre).addScaledVector(towards, distance);
+    ray.set(camera.position, towards.clone().negate());
+    ray.far = distance - radius;
+    if (ray.intersectObjects(statics).length === 0) return;
+  }
+}
+
 function start() {
   for (const run of data.runs) run.decoded = decodePoses(run.poses);
   state.end = Math.max(...data.runs.map((r) => r.times[r.frames - 1]));
@@ -220,8 +239,7 @@ function start() {
   const radius = bounds.getSize(new THREE.Vector3()).length() / 2, scale = Math.max(0.2, Math.min(radius / 4, 2));
   const camera = new THREE.PerspectiveCamera(40, 1, radius / 100, radius * 100);
   camera.up.set(0, 0, 1);
-  const distance = (1.15 * radius) / Math.sin((20 * Math.PI) / 180);
-  camera.position.copy(centre).add(new THREE.Vector3(0.55, -1.0, 0.5).normalize().multiplyScalar(distance));
+  placeCamera(camera, centre, (1.15 * radius) / Math.sin((20 * Math.PI) / 180), radius);
   data.runs.forEach((run, i) => views.push(makeView(run, i, camera)));
   for (const v of views) {
     v.controls.target.copy(centre);
