@@ -168,7 +168,7 @@ function writeTestState(camera) {
   // The camera as a matrix from world to clip space (column-major), so that a test can
   // project the logged poses itself.
   const viewProjection = camera.projectionMatrix.clone().multiply(camera.matrixWorldInverse).elements;
-  const out = {errors: window.polysimErrors, t: state.t, readyMs: state.readyMs, renderMs: state.renderMs, frameMs: state.frameMs, viewProjection, runs: []};
+  const out = {errors: window.polysimErrors, t: state.t, info: document.getElementById("info").textContent, readyMs: state.readyMs, renderMs: state.renderMs, frameMs: state.frameMs, viewProjection, runs: []};
   for (const v of views) {
     const bodies = v.run.dynamic.map((i, slot) => {
       const pose = poseOf(v, slot, v.frame);
@@ -232,6 +232,16 @@ function placeCamera(camera, centre, distance, radius) {
   }
 }
 
+// A click at page pixel (x, y) on a view: the body under it, if any, in the info line.
+function pick(view, camera, x, y) {
+  const box = view.canvas.getBoundingClientRect();
+  const mouse = new THREE.Vector2(((x - box.left) / box.width) * 2 - 1, -((y - box.top) / box.height) * 2 + 1);
+  const ray = new THREE.Raycaster();
+  ray.setFromCamera(mouse, camera);
+  const hit = ray.intersectObjects([view.dynamic.mesh, ...view.statics.map((b) => b.mesh)])[0];
+  if (hit) showInfo(view, hit);
+}
+
 function start() {
   for (const run of data.runs) run.decoded = decodePoses(run.poses);
   state.end = Math.max(...data.runs.map((r) => r.times[r.frames - 1]));
@@ -245,14 +255,7 @@ function start() {
     v.controls.target.copy(centre);
     v.controls.update();
     v.controls.addEventListener("change", () => render(camera, scale));
-    v.canvas.addEventListener("click", (e) => {
-      const box = v.canvas.getBoundingClientRect();
-      const mouse = new THREE.Vector2(((e.clientX - box.left) / box.width) * 2 - 1, -((e.clientY - box.top) / box.height) * 2 + 1);
-      const ray = new THREE.Raycaster();
-      ray.setFromCamera(mouse, camera);
-      const hit = ray.intersectObjects([v.dynamic.mesh, ...v.statics.map((b) => b.mesh)])[0];
-      if (hit) showInfo(v, hit);
-    });
+    v.canvas.addEventListener("click", (e) => pick(v, camera, e.clientX, e.clientY));
   }
   const slider = document.getElementById("slider");
   slider.max = data.runs[0].frames - 1;
@@ -275,7 +278,7 @@ function start() {
     state.last = null;
   });
   // #t=1.5 opens the page at that time (links, tests); #play starts playing; #contacts=0
-  // hides the contacts.
+  // hides the contacts; #size and #click below.
   const hash = new URLSearchParams(location.hash.slice(1));
   if (hash.has("t")) state.t = Math.min(state.end, Math.max(0, Number(hash.get("t"))));
   if (hash.has("contacts")) document.getElementById("showContacts").checked = state.showContacts = hash.get("contacts") !== "0";
@@ -287,6 +290,11 @@ function start() {
   window.addEventListener("resize", () => { resize(camera); render(camera, scale); });
   resize(camera);
   render(camera, scale);
+  if (hash.has("click")) {  // #click=x,y: a click at that page pixel of the first view (tests)
+    const [x, y] = hash.get("click").split(",").map(Number);
+    pick(views[0], camera, x, y);
+    writeTestState(camera);
+  }
   if (hash.has("play")) play.click();
   const tick = (now) => {
     if (state.playing) {

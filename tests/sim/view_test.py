@@ -46,8 +46,8 @@ def polysim(*args, ok=True):
     return run
 
 
-def page_state(page, t, contacts=True):
-    url = f"file://{page}#t={t}&contacts={int(contacts)}&size={VIEW_SIZE}"
+def page_state(page, t, contacts=True, click=None):
+    url = f"file://{page}#t={t}&contacts={int(contacts)}&size={VIEW_SIZE}" + (f"&click={click[0]},{click[1]}" if click else "")
     dom = subprocess.run(CHROMIUM + ["--dump-dom", url], capture_output=True, text=True, check=True).stdout
     found = re.search(r'<pre id="test-state"[^>]*>(.*?)</pre>', dom, re.S)
     if not found or not found.group(1):
@@ -184,6 +184,13 @@ def main():
           and same_points(pairs[0]["contacts"][0]["points"], square, 1e-6),
           "drop at rest: the contact drawn is the box's bottom square")
     check(rest["runs"][0]["drawnContactObjects"] >= 4, "drop at rest: area, outline, points and normal are drawn")
+    box_at = rest["runs"][0]["bodies"][0]["screen"]
+    clicked = page_state(page, 2.9, click=box_at)["info"]
+    position = ", ".join(f"{x:.5f}" for x in line_at(log_lines(drop_log), 2.9)["bodies"][0]["position"])
+    check(clicked.startswith("box (drop, t = 2.9000 s)") and f"position [{position}]" in clicked,
+          f"a click on the box shows its name and logged pose: {clicked!r}")
+    ground = page_state(page, 2.9, click=(rest["runs"][0]["canvas"][0] + 5, box_at[1] + 100))["info"]
+    check(ground.startswith("ground (static)"), f"a click on the floor names the floor: {ground!r}")
     with_contacts = screenshot(page, 2.9, os.path.join(work, "drop_contacts.png"), contacts=True)
     check(cyan(with_contacts).sum() > 50, f"drop at rest: the contact shows on screen ({cyan(with_contacts).sum()} px)")
 
