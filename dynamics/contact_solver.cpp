@@ -10,12 +10,23 @@
 namespace polysim::dynamics {
 namespace {
 
+// A body as the sweeps see it, taken once per solve (a solve changes velocities, never
+// poses): its world inverse inertia and centre of mass. Recomputing them from the
+// quaternion at every impulse was most of a resting stack's solve time.
+struct BodyFrame {
+  Eigen::Matrix3d inverseInertia = Eigen::Matrix3d::Zero();  // 1 / (kg m^2), world axes
+  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();    // m, world
+};
+
 // A contact prepared for the sweeps: lever arms, effective masses, target, impulses.
 struct Row {
   ContactPoint* source;
   RigidBody* a;
   RigidBody* b;
+  const BodyFrame* frameA;
+  const BodyFrame* frameB;
   Eigen::Vector3d point, normal, tangent1, tangent2;
+  Eigen::Vector3d armA, armB;                                 // m, from each centre of mass to the point
   double normalMass = 0, tangentMass1 = 0, tangentMass2 = 0;  // kg: 1 / (J M^-1 J^T)
   double target = 0;                                          // m/s, least normal velocity
   double separation = 0;                                      // m, as detected
@@ -25,16 +36,20 @@ struct Row {
   Eigen::Vector2d frictionImpulse = Eigen::Vector2d::Zero();  // accumulated, N s
 };
 
-Eigen::Vector3d relativeVelocity(const Row& r) { return r.a->velocityAt(r.point) - r.b->velocityAt(r.point); }
+Eigen::Vector3d relativeVelocity(const Row& r) {
+  return (r.a->velocity + r.a->angularVelocity.cross(r.armA)) - (r.b->velocity + r.b->angularVelocity.cross(r.armB));
+}
+
+Eigen::Vector3d relativePushVelocity(const Row& r) {
+  return (r.a->pushVelocity + r.a->pushAngularVelocity.cross(r.armA)) -
+         (r.b->pushVelocity + r.b->pushAngularVelocity.cross(r.armB));
+}
 
 // 1 / (n . (M_a^-1 + M_b^-1) n) for a unit direction n at the contact point.
 double effectiveMass(const Row& r, const Eigen::Vector3d& n) {
   double k = r.a->inverseMass + r.b->inverseMass;
-  for (const RigidBody* body : {r.a, r.b}) {
-    if (body->isStatic) continue;
-    const Eigen::Vector3d arm = r.point - body->centerOfMass();
-    k += n.dot((body->inverseInertiaWorld() * arm.cross(n)).cross(arm));
-  }
+  if (!r.a->isStatic) k += n.dot((r.frameA->inverseInertia * r.armA.cross(n)).cross(r.armA));
+  if (!r.b->isStatic) k += n.dot((r.frameB->inverseInertia * r.armB.cross(n)).cross(r.armB));
   return k > 0 ? 1.0 / k : 0.0;
 }
 
@@ -42,11 +57,8 @@ double effectiveMass(const Row& r, const Eigen::Vector3d& n) {
 // velocity (both rows between the same two bodies): the block's coupling matrix entry.
 double coupling(const Row& i, const Row& j) {
   double k = (i.a->inverseMass + i.b->inverseMass) * i.normal.dot(j.normal);
-  for (const RigidBody* body : {i.a, i.b}) {
-    if (body->isStatic) continue;
-    const Eigen::Vector3d c = body->centerOfMass();
-    k += (i.point - c).cross(i.normal).dot(body->inverseInertiaWorld() * (j.point - c).cross(j.normal));
-  }
+  if (!i.a->isStatic) k += i.armA.cross(i.normal).dot(i.frameA->inverseInertia * j.armA.cross(j.normal));
+  if (!i.b->isStatic) k += i.armB.cross(i.normal).dot(i.frameB->inverseInertia * j.armB.cross(j.normal));
   return k;
 }
 
@@ -58,19 +70,38 @@ double coupling(const Row& i, const Row& j) {
 // its neighbour's face, which turns towards it at 2 rad/s, closes 0.4 mm more in a step
 // of 1/60 s, four tolerances; each time the step backed up to it.
 double gapCurvature(const Row& r) {
-  auto centripetal = [&](const RigidBody* body) -> Eigen::Vector3d {
+  auto centripetal = [](const RigidBody* body, const Eigen::Vector3d& arm) -> Eigen::Vector3d {
     if (body->isStatic) return Eigen::Vector3d::Zero();
     const Eigen::Vector3d& w = body->angularVelocity;
-    return w.cross(w.cross(r.point - body->centerOfMass()));
+    return w.cross(w.cross(arm));
   };
   const double withA = r.source->normalTurnWithA;
   const Eigen::Vector3d normalTurn = (withA * r.a->angularVelocity + (1 - withA) * r.b->angularVelocity).cross(r.normal);
-  return r.normal.dot(centripetal(r.a) - centripetal(r.b)) + 2.0 * normalTurn.dot(relativeVelocity(r));
+  return r.normal.dot(centripetal(r.a, r.armA) - centripetal(r.b, r.armB)) + 2.0 * normalTurn.dot(relativeVelocity(r));
 }
 
+// J on a at the point and -J on b, as RigidBody::applyImpulse does it (the same
+// operations, so the same round-off) with the solve's frames.
 void applyPair(Row& r, const Eigen::Vector3d& J) {
-  r.a->applyImpulse(J, r.point);
-  r.b->applyImpulse(-J, r.point);
+  if (!r.a->isStatic) {
+    r.a->velocity += r.a->inverseMass * J;
+    r.a->angularVelocity += r.frameA->inverseInertia * r.armA.cross(J);
+  }
+  if (!r.b->isStatic) {
+    r.b->velocity += r.b->inverseMass * -J;
+    r.b->angularVelocity += r.frameB->inverseInertia * r.armB.cross(-J);
+  }
+}
+
+void applyPushPair(Row& r, const Eigen::Vector3d& J) {
+  if (!r.a->isStatic) {
+    r.a->pushVelocity += r.a->inverseMass * J;
+    r.a->pushAngularVelocity += r.frameA->inverseInertia * r.armA.cross(J);
+  }
+  if (!r.b->isStatic) {
+    r.b->pushVelocity += r.b->inverseMass * -J;
+    r.b->pushAngularVelocity += r.frameB->inverseInertia * r.armB.cross(-J);
+  }
 }
 
 // The bodies the rows touch, each once (static ones excluded).
@@ -135,16 +166,23 @@ double solveNormalRow(Row& r) {
 // A block's normal impulses solved together: the accumulated impulses x >= 0 with normal
 // velocities >= their targets and complementary. Falls back to row by row when the
 // small problem has no solution (round-off at a degenerate manifold).
-double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block) {
+// A block's coupling matrix (constant through a solve: the poses do not move).
+Eigen::MatrixXd couplingMatrix(const std::vector<Row>& rows, const std::vector<int>& block) {
+  const int n = static_cast<int>(block.size());
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = coupling(rows[block[i]], rows[block[j]]);
+  return A;
+}
+
+double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const Eigen::MatrixXd& A) {
   const int n = static_cast<int>(block.size());
   if (n == 1) return solveNormalRow(rows[block[0]]);
-  Eigen::MatrixXd A(n, n);
   Eigen::VectorXd b(n), old(n);
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
     old(i) = ri.normalImpulse;
     b(i) = ri.normal.dot(relativeVelocity(ri)) - ri.target;
-    for (int j = 0; j < n; ++j) A(i, j) = coupling(ri, rows[block[j]]);
   }
   b -= A * old;
   const std::optional<Eigen::VectorXd> x = solveSmallLcp(A, b);
@@ -207,12 +245,10 @@ void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt) {
     double largestChange = 0.0;
     for (size_t k = 0; k < rows.size(); ++k) {
       Row& r = rows[k];
-      const double vn = r.normal.dot(r.a->pushVelocityAt(r.point) - r.b->pushVelocityAt(r.point));
+      const double vn = r.normal.dot(relativePushVelocity(r));
       const double old = impulse[k];
       impulse[k] = std::max(0.0, old - r.normalMass * (vn - target[k]));
-      const Eigen::Vector3d J = (impulse[k] - old) * r.normal;
-      r.a->applyPushImpulse(J, r.point);
-      r.b->applyPushImpulse(-J, r.point);
+      applyPushPair(r, (impulse[k] - old) * r.normal);
       largestChange = std::max(largestChange, std::abs(impulse[k] - old) * std::max(r.a->inverseMass, r.b->inverseMass));
     }
     if (largestChange < kPushVelocityTolerance) break;
@@ -225,12 +261,24 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
                          double allowedOverlap) {
   std::vector<Row> rows;
   rows.reserve(contacts.size());
+  std::vector<BodyFrame> frames;
+  frames.reserve(2 * contacts.size());  // never reallocated: rows point into it
+  std::unordered_map<int, const BodyFrame*> frameOf;
+  auto frame = [&](int i) {
+    const auto [at, fresh] = frameOf.try_emplace(i, nullptr);
+    if (fresh) at->second = &frames.emplace_back(BodyFrame{bodies[i].inverseInertiaWorld(), bodies[i].centerOfMass()});
+    return at->second;
+  };
   for (ContactPoint& c : contacts) {
     Row r;
     r.source = &c;
     r.a = &bodies[c.a];
     r.b = &bodies[c.b];
     if (r.a->isStatic && r.b->isStatic) continue;  // static pairs cost nothing
+    r.frameA = frame(c.a);
+    r.frameB = frame(c.b);
+    r.armA = c.point - r.frameA->centerOfMass;
+    r.armB = c.point - r.frameB->centerOfMass;
     r.point = c.point;
     r.normal = c.normal;
     r.friction = c.friction;
@@ -265,12 +313,14 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   }
   SolveStats stats;
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
+  std::vector<Eigen::MatrixXd> couplings;
+  for (const std::vector<int>& block : blocks) couplings.push_back(block.size() > 1 ? couplingMatrix(rows, block) : Eigen::MatrixXd());
   while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
-    for (const std::vector<int>& block : blocks) {
-      for (int k : block) largestChange = std::max(largestChange, solveFrictionRow(rows[k]));
-      largestChange = std::max(largestChange, solveNormalBlock(rows, block));
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplings[k]));
     }
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;
