@@ -175,9 +175,10 @@ Eigen::MatrixXd couplingMatrix(const std::vector<Row>& rows, const std::vector<i
   return A;
 }
 
-double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const Eigen::MatrixXd& A) {
+double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const SmallLcp& lcp) {
   const int n = static_cast<int>(block.size());
   if (n == 1) return solveNormalRow(rows[block[0]]);
+  const Eigen::MatrixXd& A = lcp.matrix();
   Eigen::VectorXd b(n), old(n);
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
@@ -185,7 +186,7 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
     b(i) = ri.normal.dot(relativeVelocity(ri)) - ri.target;
   }
   b -= A * old;
-  const std::optional<Eigen::VectorXd> x = solveSmallLcp(A, b);
+  const std::optional<Eigen::VectorXd> x = lcp.solve(b);
   double change = 0.0;
   if (!x) {
     for (int k : block) change = std::max(change, solveNormalRow(rows[k]));
@@ -313,8 +314,9 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   }
   SolveStats stats;
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
-  std::vector<Eigen::MatrixXd> couplings;
-  for (const std::vector<int>& block : blocks) couplings.push_back(block.size() > 1 ? couplingMatrix(rows, block) : Eigen::MatrixXd());
+  std::vector<SmallLcp> couplings;  // per block, its coupling matrix: constant through the sweeps
+  couplings.reserve(blocks.size());
+  for (const std::vector<int>& block : blocks) couplings.emplace_back(block.size() > 1 ? couplingMatrix(rows, block) : Eigen::MatrixXd());
   while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass

@@ -4,6 +4,8 @@
 // two-point solver does), instead of one corner after another.
 
 #include <Eigen/Core>
+#include <Eigen/QR>
+#include <array>
 #include <optional>
 
 namespace polysim::dynamics {
@@ -12,12 +14,29 @@ namespace polysim::dynamics {
 /// face). Larger manifolds are solved point by point.
 inline constexpr int kMaxBlockSize = 4;
 
-/// Finds x >= 0 with w = A x + b >= 0 and x . w = 0, for symmetric positive semidefinite
-/// A (n <= kMaxBlockSize), by trying every set of points that push (largest sets first).
-/// Where A is singular (four coplanar corners of one rigid face carry a load in
-/// infinitely many ways), each set's system is solved in the least-norm sense: the load
-/// spreads evenly, as it does on a real face, not onto whichever corner came first.
-/// Empty when no set satisfies the conditions within kLcpRoundOff of the problem's scale.
+/// The problems x >= 0, w = A x + b >= 0, x . w = 0 for one symmetric positive
+/// semidefinite A (n <= kMaxBlockSize) and any b: a contact's block through the sweeps of
+/// one solve, where A stays and b changes. Each set of points that push is tried, largest
+/// sets first; where A is singular (four coplanar corners of one rigid face carry a load
+/// in infinitely many ways), a set's system is solved in the least-norm sense, so the
+/// load spreads evenly, as on a real face, not onto whichever corner came first. Each
+/// set's decomposition is made once, when first needed.
+class SmallLcp {
+ public:
+  explicit SmallLcp(const Eigen::MatrixXd& A);
+  const Eigen::MatrixXd& matrix() const { return A_; }
+  /// The solution for `b`, or empty when no set satisfies the conditions within
+  /// kLcpRoundOff of the problem's scale.
+  std::optional<Eigen::VectorXd> solve(const Eigen::VectorXd& b) const;
+
+ private:
+  using Decomposition = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>;
+  Eigen::MatrixXd A_;
+  double largestCoefficient_;
+  mutable std::array<std::optional<Decomposition>, 1u << kMaxBlockSize> decompositions_;  // by set
+};
+
+/// SmallLcp(A).solve(b): one problem on its own.
 std::optional<Eigen::VectorXd> solveSmallLcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
 
 }  // namespace polysim::dynamics
