@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "collision/contact_reduction.h"
+#include "collision/containment.h"
 #include "collision/separating_plane.h"
 #include "collision/tolerances.h"
 
@@ -80,6 +81,15 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
       if (!facing(fp)) judge(fp.a, fp.b, &ws.cover);
   }
   if (result.status == Status::Interpenetrating) return result;
+  if (!touching) {  // no polygons meet: one object may still lie wholly inside the other
+    std::optional<double> depth = containmentDepth(A, B);
+    if (!depth) depth = containmentDepth(B, A);
+    if (depth) {
+      result.status = Status::Interpenetrating;
+      result.depth = *depth;
+      return result;
+    }
+  }
   if (touching) {
     result.status = Status::Contact;
     if (options.contacts) {

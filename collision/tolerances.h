@@ -109,4 +109,10 @@ inline constexpr double kTunnelingSafety = 0.5;
 /// beyond it the no-tunnelling guarantee is not kept (the result says so).
 inline constexpr int kMaxSubintervals = 4096;
 
+/// The inside test of containment (containment.h) casts a ray and counts the faces it
+/// crosses; a crossing within this fraction of the face's size of the face's rim is
+/// ambiguous (the ray may cross two faces at their shared edge, or graze a vertex), and
+/// the ray is cast again in another direction. Far above round-off, far below any face.
+inline constexpr double kGrazingFraction = 1e-9;
+
 }  // namespace polysim::collision

@@ -152,6 +152,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "sleep: unknown field \"treshold\""},
         Rejection{"missing_obj_file", SceneFiles::withBody(R"("shape": {"type": "obj", "file": "nowhere.obj"})"),
                   "body \"box\": shape: cannot read"},
+        Rejection{"inside_another_at_start", SceneFiles::withBody(R"("shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "position": [3, 2, -0.5])"),
+                  "bodies \"box\" and \"ground\": interpenetrate at the start"},  // wholly inside: no polygons meet
         Rejection{"interpenetrating_at_start", SceneFiles::withBody(R"("shape": {"type": "box", "size": [1,1,1]}, "position": [0, 0, 0.3])"),
                   "bodies \"box\" and \"ground\": interpenetrate at the start"}),
     [](const ::testing::TestParamInfo<Rejection>& info) { return info.param.name; });
