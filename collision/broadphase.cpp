@@ -11,6 +11,26 @@ Eigen::AlignedBox3d worldContainer(const ObjNode& object) {
   return transformBox(object.X_WO, object.grid->container());
 }
 
+void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBox3d>& boxes,
+                          std::vector<std::pair<int, int>>& pairs) {
+  const int n = static_cast<int>(db.objects.size());
+  boxes.resize(db.objects.size());
+  std::vector<int> order(db.objects.size());
+  for (int i = 0; i < n; ++i) {
+    boxes[i] = grow(worldContainer(db.objects[i]), db.tolerance);  // as overlapRegion grows them
+    order[i] = i;
+  }
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return boxes[i].min().x() < boxes[j].min().x(); });
+  pairs.clear();
+  for (size_t k = 0; k < order.size(); ++k)
+    for (size_t m = k + 1; m < order.size() && boxes[order[m]].min().x() <= boxes[order[k]].max().x(); ++m) {
+      const int i = std::min(order[k], order[m]), j = std::max(order[k], order[m]);
+      if ((db.objects[i].isStatic && db.objects[j].isStatic) || !boxes[i].intersects(boxes[j])) continue;
+      pairs.emplace_back(i, j);
+    }
+  std::sort(pairs.begin(), pairs.end());
+}
+
 std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode& b, double eps) {
   const Eigen::AlignedBox3d region = grow(worldContainer(a), eps).intersection(grow(worldContainer(b), eps));
   if (region.isEmpty()) return std::nullopt;

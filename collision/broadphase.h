@@ -21,6 +21,13 @@ Eigen::AlignedBox3d worldContainer(const ObjNode& object);
 /// of their world container boxes, each grown by eps. Empty optional when they cannot.
 std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode& b, double eps);
 
+/// The pairs of objects (i < j, not both static) whose world containers, each grown by
+/// eps (m), meet: those overlapRegion() may find a region for, and no others. Sweep and
+/// prune along x, so N objects cost about N log N plus the pairs, not N^2 / 2 box tests.
+/// In database order (by i, then j), `boxes` is scratch.
+void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBox3d>& boxes,
+                          std::vector<std::pair<int, int>>& pairs);
+
 /// A candidate polygon pair: face `a` of the first object, face `b` of the second.
 struct FacePair {
   int a, b;

@@ -103,19 +103,17 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
 IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& ws,
                                      const IntersectionOptions& options) {
   IntersectionResult result;
-  const int n = static_cast<int>(db.objects.size());
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b) {
-      if (db.objects[a].isStatic && db.objects[b].isStatic) continue;
-      // In a static-moving pair the moving object is `a`, so that the normal points from
-      // the ground (or wall) towards what rests on it.
-      const bool flip = db.objects[a].isStatic;
-      PairResult pair = testObjectPair(db, flip ? b : a, flip ? a : b, ws, options, &result.polygonPairsTested);
-      if (pair.status == Status::Separate) continue;
-      result.status = std::max(result.status, pair.status);
-      result.pairs.push_back(std::move(pair));
-      if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) return result;
-    }
+  candidateObjectPairs(db, ws.containers, ws.objectPairs);  // the pairs whose containers meet
+  for (const auto& [a, b] : ws.objectPairs) {
+    // In a static-moving pair the moving object is `a`, so that the normal points from
+    // the ground (or wall) towards what rests on it.
+    const bool flip = db.objects[a].isStatic;
+    PairResult pair = testObjectPair(db, flip ? b : a, flip ? a : b, ws, options, &result.polygonPairsTested);
+    if (pair.status == Status::Separate) continue;
+    result.status = std::max(result.status, pair.status);
+    result.pairs.push_back(std::move(pair));
+    if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) return result;
+  }
   return result;
 }
 

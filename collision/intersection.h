@@ -35,6 +35,8 @@ struct IntersectionResult {
 /// Reusable scratch memory of the test (per-object world faces, candidate lists), so that
 /// repeated queries do not allocate. One workspace serves one thread.
 struct IntersectionWorkspace {
+  std::vector<Eigen::AlignedBox3d> containers;  // per object, for the pairs' sweep and prune
+  std::vector<std::pair<int, int>> objectPairs;
   std::vector<WorldFaces> faces;
   DescentScratch descent;
   std::vector<FacePair> candidates;
@@ -45,7 +47,7 @@ struct IntersectionWorkspace {
 };
 
 /// Tests every pair of objects of the database at their current transforms (static pairs
-/// excepted) with the database's tolerance: separate, contact (within tolerance; touching
+/// excepted; pairs whose containers are apart are skipped by a sweep and prune) with the database's tolerance: separate, contact (within tolerance; touching
 /// counts) or interpenetrating (a feature more than the tolerance inside the other).
 IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& workspace,
                                      const IntersectionOptions& options = {});
