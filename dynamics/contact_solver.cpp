@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "dynamics/settings.h"
 #include "dynamics/small_lcp.h"
@@ -107,9 +108,10 @@ void applyPushPair(Row& r, const Eigen::Vector3d& J) {
 // The bodies the rows touch, each once (static ones excluded).
 std::vector<RigidBody*> movingBodies(const std::vector<Row>& rows) {
   std::vector<RigidBody*> bodies;
+  std::unordered_set<const RigidBody*> seen;
   for (const Row& r : rows)
     for (RigidBody* b : {r.a, r.b})
-      if (!b->isStatic && std::find(bodies.begin(), bodies.end(), b) == bodies.end()) bodies.push_back(b);
+      if (!b->isStatic && seen.insert(b).second) bodies.push_back(b);
   return bodies;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "collision/aabb.h"
 #include "collision/broadphase.h"
@@ -201,15 +202,21 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   std::stable_sort(points.begin(), points.end(), [&down](const dynamics::ContactPoint& p, const dynamics::ContactPoint& q) {
     return p.point.dot(down) > q.point.dot(down);
   });
-  // Warm start from the last solve's point of the same pair, if one is close enough.
-  for (dynamics::ContactPoint& p : points)
-    for (const dynamics::ContactPoint& old : lastSolved_)
-      if (old.a == p.a && old.b == p.b && (old.point - p.point).norm() <= kWarmStartRadius &&
-          old.normal.dot(p.normal) > 0) {
-        p.normalImpulse = old.normalImpulse * horizon;
-        p.frictionImpulse = old.frictionImpulse * horizon;
+  // Warm start from the last solve's first point of the same pair close enough to it
+  // (the old points looked up by pair: a pile has thousands).
+  std::unordered_map<long long, std::vector<const dynamics::ContactPoint*>> oldOfPair;
+  const auto pairKey = [n = static_cast<long long>(bodies_.size())](int a, int b) { return a * n + b; };
+  for (const dynamics::ContactPoint& old : lastSolved_) oldOfPair[pairKey(old.a, old.b)].push_back(&old);
+  for (dynamics::ContactPoint& p : points) {
+    const auto found = oldOfPair.find(pairKey(p.a, p.b));
+    if (found == oldOfPair.end()) continue;
+    for (const dynamics::ContactPoint* old : found->second)
+      if ((old->point - p.point).norm() <= kWarmStartRadius && old->normal.dot(p.normal) > 0) {
+        p.normalImpulse = old->normalImpulse * horizon;
+        p.frictionImpulse = old->frictionImpulse * horizon;
         break;
       }
+  }
   const double allowedOverlap = dynamics::kAllowedOverlapFraction * db_.tolerance;
   report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap).iterations;
   if (!remember) return;
