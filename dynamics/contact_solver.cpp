@@ -37,13 +37,17 @@ struct Row {
   Eigen::Vector2d frictionImpulse = Eigen::Vector2d::Zero();  // accumulated, N s
 };
 
-Eigen::Vector3d relativeVelocity(const Row& r) {
-  return (r.a->velocity + r.a->angularVelocity.cross(r.armA)) - (r.b->velocity + r.b->angularVelocity.cross(r.armB));
-}
+// A body's velocities, or its push velocities (split impulses): the pairs the sweeps change.
+using Velocity = Eigen::Vector3d RigidBody::*;
+struct Velocities {
+  Velocity linear, angular;
+};
+constexpr Velocities kMomentum{&RigidBody::velocity, &RigidBody::angularVelocity};
+constexpr Velocities kPush{&RigidBody::pushVelocity, &RigidBody::pushAngularVelocity};
 
-Eigen::Vector3d relativePushVelocity(const Row& r) {
-  return (r.a->pushVelocity + r.a->pushAngularVelocity.cross(r.armA)) -
-         (r.b->pushVelocity + r.b->pushAngularVelocity.cross(r.armB));
+// The velocity of a's material point at the contact relative to b's.
+Eigen::Vector3d relativeVelocity(const Row& r, Velocities v = kMomentum) {
+  return (r.a->*v.linear + (r.a->*v.angular).cross(r.armA)) - (r.b->*v.linear + (r.b->*v.angular).cross(r.armB));
 }
 
 // 1 / (n . (M_a^-1 + M_b^-1) n) for a unit direction n at the contact point.
@@ -83,25 +87,14 @@ double gapCurvature(const Row& r) {
 
 // J on a at the point and -J on b, as RigidBody::applyImpulse does it (the same
 // operations, so the same round-off) with the solve's frames.
-void applyPair(Row& r, const Eigen::Vector3d& J) {
+void applyPair(Row& r, const Eigen::Vector3d& J, Velocities v = kMomentum) {
   if (!r.a->isStatic) {
-    r.a->velocity += r.a->inverseMass * J;
-    r.a->angularVelocity += r.frameA->inverseInertia * r.armA.cross(J);
+    r.a->*v.linear += r.a->inverseMass * J;
+    r.a->*v.angular += r.frameA->inverseInertia * r.armA.cross(J);
   }
   if (!r.b->isStatic) {
-    r.b->velocity += r.b->inverseMass * -J;
-    r.b->angularVelocity += r.frameB->inverseInertia * r.armB.cross(-J);
-  }
-}
-
-void applyPushPair(Row& r, const Eigen::Vector3d& J) {
-  if (!r.a->isStatic) {
-    r.a->pushVelocity += r.a->inverseMass * J;
-    r.a->pushAngularVelocity += r.frameA->inverseInertia * r.armA.cross(J);
-  }
-  if (!r.b->isStatic) {
-    r.b->pushVelocity += r.b->inverseMass * -J;
-    r.b->pushAngularVelocity += r.frameB->inverseInertia * r.armB.cross(-J);
+    r.b->*v.linear += r.b->inverseMass * -J;
+    r.b->*v.angular += r.frameB->inverseInertia * r.armB.cross(-J);
   }
 }
 
@@ -248,10 +241,10 @@ void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt) {
     double largestChange = 0.0;
     for (size_t k = 0; k < rows.size(); ++k) {
       Row& r = rows[k];
-      const double vn = r.normal.dot(relativePushVelocity(r));
+      const double vn = r.normal.dot(relativeVelocity(r, kPush));
       const double old = impulse[k];
       impulse[k] = std::max(0.0, old - r.normalMass * (vn - target[k]));
-      applyPushPair(r, (impulse[k] - old) * r.normal);
+      applyPair(r, (impulse[k] - old) * r.normal, kPush);
       largestChange = std::max(largestChange, std::abs(impulse[k] - old) * std::max(r.a->inverseMass, r.b->inverseMass));
     }
     if (largestChange < kPushVelocityTolerance) break;
