@@ -7,6 +7,8 @@
 const data = JSON.parse(document.getElementById("polysim-data").textContent);
 const FLOATS = 10;  // per body and frame: position 3, orientation [w x y z] 4, velocity 3
 const BACKGROUND = 0x1d2330;
+const TIME_ROUNDOFF = 1e-12;  // s: a step's logged time is "at or before t" despite round-off in t
+const LEAST_DEPTH_SCALE = 1e-12;  // m: the penetration axis's top when nothing ever overlapped
 
 function decodePoses(text) {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -35,7 +37,7 @@ function frameAt(run, t) {  // the last frame at or before t
   let lo = 0, hi = run.frames - 1;
   while (lo < hi) {
     const mid = (lo + hi + 1) >> 1;
-    if (run.times[mid] <= t + 1e-12) lo = mid; else hi = mid - 1;
+    if (run.times[mid] <= t + TIME_ROUNDOFF) lo = mid; else hi = mid - 1;
   }
   return lo;
 }
@@ -132,7 +134,7 @@ function drawPlot() {
   g.fillRect(0, 0, c.width, c.height);
   const finite = (list) => list.filter((v) => v !== null);
   const energies = data.runs.flatMap((r) => finite(r.energy)), depths = data.runs.flatMap((r) => finite(r.penetration));
-  const eMin = Math.min(...energies), eMax = Math.max(...energies), dMax = Math.max(1e-12, ...depths);
+  const eMin = Math.min(...energies), eMax = Math.max(...energies), dMax = Math.max(LEAST_DEPTH_SCALE, ...depths);
   const x = (t) => (t / state.end) * (c.width - 1), pad = 14;
   const line = (run, values, low, high, colour, dashed) => {
     g.strokeStyle = colour;
