@@ -14,6 +14,16 @@
 
 namespace polysim::test {
 
+/// A path in the test temp folder of its own for the running test: ctest runs tests in
+/// parallel processes, and two tests writing one file read each other's halves.
+inline std::string tempPath(const std::string& file) {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : "no_test";
+  for (char& c : test)
+    if (c == '/') c = '_';
+  return ::testing::TempDir() + test + "_" + file;
+}
+
 /// |a - b| <= tol, printing both vectors on failure (FCL's eigen_matrix_compare habit).
 inline ::testing::AssertionResult near(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) {
   if ((a - b).norm() <= tol) return ::testing::AssertionSuccess();

@@ -14,6 +14,7 @@
 #include "sim/scene.h"
 #include "sim/scene_generators.h"
 #include "sim/world.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -23,7 +24,7 @@ Scene generated(const std::string& kind, int count, unsigned long long seed = 1)
   o.kind = kind;
   o.count = count;
   o.seed = seed;
-  const std::string path = testing::TempDir() + "polysim_busy_" + kind + ".json";
+  const std::string path = ::polysim::test::tempPath("polysim_busy_" + kind + ".json");
   std::ofstream(path) << makeScene(o).dump(1) << "\n";
   Scene scene = loadScene(path);
   // Sleeping off: these guard the contact solver, and "at rest" must come from it, not

@@ -13,6 +13,7 @@
 #include "sim/scene.h"
 #include "sim/world.h"
 #include "tests/sim/scenario_support.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -36,7 +37,7 @@ TEST(FailureModes, FastSmallBoxDoesNotTunnelThroughAThinPlate) {
 // splits the step finely enough to catch the hit. Turning clockwise from +y, the tip
 // meets the wall's face at x = 0.69 after asin(0.69) = 0.7614 rad, at 4.23 ms.
 TEST(FailureModes, SpinningPlankDoesNotTunnelThroughAThinWall) {
-  const std::string path = testing::TempDir() + "polysim_spinning_plank.json";
+  const std::string path = ::polysim::test::tempPath("polysim_spinning_plank.json");
   std::ofstream(path) << R"({"name": "spinning_plank", "gravity": [0, 0, 0], "dt": 0.016666666666666666,
     "bodies": [
       {"name": "wall", "static": true, "shape": {"type": "box", "size": [0.02, 2, 2]}, "position": [0.7, 0, 0]},

@@ -14,6 +14,7 @@
 
 #include "sim/commands.h"
 #include "sim/scene.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -21,7 +22,7 @@ namespace {
 // Loads a generated scene through the scene reader (every SPEC.md check) and the
 // start-state check (no interpenetration).
 Scene loaded(const MakeOptions& options) {
-  const std::string path = testing::TempDir() + "polysim_generated_" + options.kind + ".json";
+  const std::string path = ::polysim::test::tempPath("polysim_generated_" + options.kind + ".json");
   std::ofstream(path) << makeScene(options).dump(1) << "\n";
   Scene scene = loadScene(path);
   checkInitialState(scene);
@@ -126,7 +127,7 @@ TEST(SceneGenerators, BadOptionsAreRejectedNamingTheOption) {
 // naming it, and leaves no partial file behind.
 TEST(SceneGenerators, MakeCommandWritesTheFileWholeOrNotAtAll) {
   const MakeOptions o = options("cups", 3, 5);
-  const std::string path = testing::TempDir() + "polysim_make_cups.json";
+  const std::string path = ::polysim::test::tempPath("polysim_make_cups.json");
   std::ostringstream unused;
   ASSERT_EQ(makeCommand(o, path, unused), 0);
   std::ifstream in(path);
@@ -134,7 +135,7 @@ TEST(SceneGenerators, MakeCommandWritesTheFileWholeOrNotAtAll) {
   EXPECT_EQ(written, makeScene(o).dump(1) + "\n");
   EXPECT_TRUE(unused.str().empty());
 
-  const std::string bad = testing::TempDir() + "no_such_directory/scene.json";
+  const std::string bad = ::polysim::test::tempPath("no_such_directory/scene.json");
   try {
     makeCommand(o, bad, unused);
     FAIL() << "an unwritable path must be an error";

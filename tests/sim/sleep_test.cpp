@@ -20,6 +20,7 @@
 #include "sim/scene.h"
 #include "sim/scene_generators.h"
 #include "sim/world.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -28,7 +29,7 @@ constexpr double g = 9.81;
 constexpr double kDt = 1.0 / 60;
 
 Scene sceneFrom(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + "polysim_sleep_" + name + ".json";
+  const std::string path = ::polysim::test::tempPath("polysim_sleep_" + name + ".json");
   std::ofstream(path) << text;
   return loadScene(path);
 }
@@ -228,12 +229,12 @@ TEST(Sleep, ABoxThatStopsWithinTheToleranceOfAnotherIsInContactWithIt) {
 // The step log names who falls asleep and who wakes, and counts the sleepers; `polysim
 // log` shows the count.
 TEST(Sleep, TheStepLogSaysWhoSleepsAndWakes) {
-  const std::string scenePath = testing::TempDir() + "polysim_sleep_log.json";
+  const std::string scenePath = ::polysim::test::tempPath("polysim_sleep_log.json");
   std::ofstream(scenePath) << R"({"name": "sleep_log", "dt": 0.016666666666666666, "bodies": [
     {"name": "ground", "static": true, "shape": {"type": "box", "size": [20, 20, 1]}, "position": [0, 0, -0.5]},
     {"name": "bottom", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 0.5]},
     {"name": "dropped", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 6.5]}]})";
-  const std::string logPath = testing::TempDir() + "polysim_sleep_log.jsonl";
+  const std::string logPath = ::polysim::test::tempPath("polysim_sleep_log.jsonl");
   RunOptions options;
   options.logPath = logPath;
   options.duration = 3.0;

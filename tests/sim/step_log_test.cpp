@@ -13,6 +13,7 @@
 #include "sim/run.h"
 #include "sim/step_log.h"
 #include "sim/world.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -30,7 +31,7 @@ struct LoggedRun {
 const LoggedRun& tiltedDrop() {
   static const LoggedRun run = [] {
     LoggedRun r;
-    r.path = testing::TempDir() + "polysim_step_log_test.jsonl";
+    r.path = ::polysim::test::tempPath("polysim_step_log_test.jsonl");
     RunOptions options;
     options.logPath = r.path;
     options.duration = 2.0;
@@ -140,14 +141,14 @@ TEST(StepLog, PolysimLogKeepsOnlyTheStepsInTheTimeWindow) {
 // bounce every 0.1 ms, so every step of 1/60 s reaches the event bound. The summary
 // counts those steps as the log marks them, and `polysim log` sums each step's tests.
 TEST(StepLog, StepsAtTheEventBoundAreCountedAndTheirTestsSummed) {
-  const std::string scenePath = testing::TempDir() + "polysim_rattle.json";
+  const std::string scenePath = ::polysim::test::tempPath("polysim_rattle.json");
   std::ofstream(scenePath) << R"({"name": "rattle", "gravity": [0, 0, 0], "dt": 0.016666666666666666,
     "contact": {"tolerance": 1e-4, "restitution": 1.0, "friction": 0.0},
     "bodies": [
       {"name": "left", "static": true, "shape": {"type": "box", "size": [1, 4, 4]}, "position": [-1.0005, 0, 0]},
       {"name": "right", "static": true, "shape": {"type": "box", "size": [1, 4, 4]}, "position": [1.0005, 0, 0]},
       {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}, "velocity": [10, 0, 0], "mass": 1.0}]})";
-  const std::string logPath = testing::TempDir() + "polysim_rattle.jsonl";
+  const std::string logPath = ::polysim::test::tempPath("polysim_rattle.jsonl");
   RunOptions options;
   options.logPath = logPath;
   options.duration = 0.1;
@@ -177,7 +178,7 @@ TEST(StepLog, StepsAtTheEventBoundAreCountedAndTheirTestsSummed) {
 // step, and each landing is an event of its own island, in the step where it lands
 // (sqrt(2 h / g) after the start). `polysim log` shows the same per step.
 TEST(StepLog, EachStepSaysHowManyIslandsSteppedAndTheirEvents) {
-  const std::string scenePath = testing::TempDir() + "polysim_two_drops.json";
+  const std::string scenePath = ::polysim::test::tempPath("polysim_two_drops.json");
   // Sleeping off: a box that has landed would leave the stepping islands 0.5 s later.
   std::ofstream(scenePath) << R"({"name": "two_drops", "gravity": [0, 0, -9.81], "dt": 0.016666666666666666,
     "sleep": {"enabled": false},
@@ -185,7 +186,7 @@ TEST(StepLog, EachStepSaysHowManyIslandsSteppedAndTheirEvents) {
       {"name": "floor", "static": true, "shape": {"type": "box", "size": [20, 20, 1]}, "position": [0, 0, -0.5]},
       {"name": "low", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 1.5]},
       {"name": "high", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [5, 0, 3.5]}]})";
-  const std::string logPath = testing::TempDir() + "polysim_two_drops.jsonl";
+  const std::string logPath = ::polysim::test::tempPath("polysim_two_drops.jsonl");
   RunOptions options;
   options.logPath = logPath;
   options.duration = 1.0;
@@ -215,7 +216,7 @@ TEST(StepLog, EachStepSaysHowManyIslandsSteppedAndTheirEvents) {
 
 // A figure missing from a line is shown as missing, not as a plausible zero.
 TEST(StepLog, PolysimLogShowsAMissingFigureAsNull) {
-  const std::string path = testing::TempDir() + "polysim_step_log_missing.jsonl";
+  const std::string path = ::polysim::test::tempPath("polysim_step_log_missing.jsonl");
   std::ofstream(path) << R"({"step":1,"t":0.1,"events":[],"bodies":[],"energy":2.5})" << "\n";
   std::ostringstream out;
   inspectLog(path, {}, out);
@@ -227,7 +228,7 @@ TEST(StepLog, PolysimLogShowsAMissingFigureAsNull) {
 }
 
 TEST(StepLog, PolysimLogRejectsALineThatIsNotAStepNamingTheLine) {
-  const std::string path = testing::TempDir() + "polysim_step_log_bad.jsonl";
+  const std::string path = ::polysim::test::tempPath("polysim_step_log_bad.jsonl");
   std::ofstream(path) << R"({"step":1,"t":0.1,"events":[],"bodies":[],"energy":2.5})" << "\n"
                       << "not json\n"
                       << R"({"step":3,"t":0.3,"events":[],"bodies":[],"energy":2.5})" << "\n";
@@ -253,7 +254,7 @@ TEST(StepLog, SameSceneTwiceGivesAnIdenticalLog) {
 }
 
 TEST(StepLog, EveryLineIsACompleteStepWithItsEvents) {
-  const std::string path = testing::TempDir() + "polysim_bounce.jsonl";
+  const std::string path = ::polysim::test::tempPath("polysim_bounce.jsonl");
   RunOptions options;
   options.logPath = path;
   options.duration = 1.0;

@@ -9,6 +9,7 @@
 
 #include "collision/tolerances.h"
 #include "sim/commands.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -45,7 +46,7 @@ TEST(TocCommand, BoxOntoSlabGivesTheContactTimeWithEitherMethod) {
 // tunnelling guard may take. The answer says the guard did not hold instead of passing
 // "separate" off as sure.
 TEST(TocCommand, MotionBeyondTheTunnellingGuardIsSaidSo) {
-  const std::string path = testing::TempDir() + "polysim_toc_far.json";
+  const std::string path = ::polysim::test::tempPath("polysim_toc_far.json");
   std::ofstream(path) << R"({"dt": 1, "bodies": [
       {"name": "ground", "static": true, "shape": {"type": "box", "size": [10, 10, 1]}, "position": [0, 0, -0.5]},
       {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 3], "velocity": [0, 0, -1e6]}]})";

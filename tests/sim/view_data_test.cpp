@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim/run.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
@@ -52,7 +53,7 @@ class ViewLog : public ::testing::Test {
  protected:
   void SetUp() override {
     scene_ = loadScene(std::string(POLYSIM_SCENES_DIR) + "/tilted_drop.json");
-    log_ = testing::TempDir() + "polysim_view_data.jsonl";
+    log_ = ::polysim::test::tempPath("polysim_view_data.jsonl");
     RunOptions options;
     options.logPath = log_;
     options.logContacts = true;
@@ -63,7 +64,7 @@ class ViewLog : public ::testing::Test {
   }
   // The log with line `n` (1-based) replaced.
   std::string withLine(size_t n, const std::string& text) {
-    const std::string path = testing::TempDir() + "polysim_view_data_bad.jsonl";
+    const std::string path = ::polysim::test::tempPath("polysim_view_data_bad.jsonl");
     std::ofstream out(path);
     for (size_t k = 0; k < lines_.size(); ++k) out << (k + 1 == n ? text : lines_[k]) << "\n";
     return path;
@@ -84,7 +85,7 @@ class ViewLog : public ::testing::Test {
 TEST_F(ViewLog, FramesAreTheInitialStateThenEveryLoggedStep) {
   const nlohmann::ordered_json run = logToViewJson(log_, scene_);
   ASSERT_EQ(run["frames"].get<size_t>(), lines_.size() + 1);
-  EXPECT_EQ(run["label"], "polysim_view_data");
+  EXPECT_EQ(run["label"], std::filesystem::path(log_).stem().string());  // the file name without .jsonl
   EXPECT_EQ(run["dynamic"], nlohmann::ordered_json::array({1}));
   const std::vector<float> poses = decoded(run["poses"].get<std::string>());
   ASSERT_EQ(poses.size(), (lines_.size() + 1) * 10);
@@ -124,10 +125,10 @@ TEST_F(ViewLog, AnUnfitLogIsRefusedByLineAndField) {
   EXPECT_NE(errorFor(withLine(2, R"({"step": 2, "t": 0.1, "events": [], "bodies": [{"name": "box", "position": [0, 0]}]})"))
                 .find("line 2: body 0: \"position\" is not 3 numbers"),
             std::string::npos);
-  const std::string cut = testing::TempDir() + "polysim_view_data_cut.jsonl";
+  const std::string cut = ::polysim::test::tempPath("polysim_view_data_cut.jsonl");
   std::ofstream(cut) << lines_[0] << "\n" << lines_[1].substr(0, lines_[1].size() / 2);
   EXPECT_NE(errorFor(cut).find("line 2: cut short"), std::string::npos) << errorFor(cut);
-  const std::string empty = testing::TempDir() + "polysim_view_data_empty.jsonl";
+  const std::string empty = ::polysim::test::tempPath("polysim_view_data_empty.jsonl");
   std::ofstream(empty) << "";
   EXPECT_NE(errorFor(empty).find("holds no step"), std::string::npos);
 }
