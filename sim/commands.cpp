@@ -137,8 +137,10 @@ int makeCommand(const MakeOptions& options, const std::string& outPath, std::ost
 }
 
 int viewCommand(const ViewOptions& options, std::ostream& out) {
-  const std::string page = writeViewPage(options);
-  out << nlohmann::ordered_json{{"page", page}, {"bytes", std::filesystem::file_size(page)}}.dump() << "\n";
+  const ViewPage page = writeViewPage(options);
+  nlohmann::ordered_json summary{{"page", page.path}, {"bytes", std::filesystem::file_size(page.path)}};
+  if (!page.warnings.empty()) summary["warnings"] = page.warnings;
+  out << summary.dump() << "\n";
   return 0;
 }
 

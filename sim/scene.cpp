@@ -12,6 +12,7 @@
 #include "collision/intersection.h"
 #include "collision/shapes.h"
 #include "dynamics/mass_properties.h"
+#include "sim/json_text.h"
 #include "sim/obj_reader.h"
 
 namespace polysim::sim {
@@ -196,9 +197,9 @@ bool readShape(const json& shapeJson, BodySpec& body, const std::filesystem::pat
     const auto file = shape.string("file", true);
     if (!file) return false;
     try {
-      body.mesh = readObj((sceneDir / *file).string());
+      body.mesh = readObjFile((sceneDir / *file).string());
     } catch (const std::exception& e) {
-      return shape.problem(e.what()), false;
+      return shape.problem("file \"" + *file + "\": " + e.what()), false;
     }
   } else if (*type == "icosphere") {
     shape.allowOnly({"type", "radius", "subdivisions"});
@@ -318,14 +319,16 @@ Scene loadScene(const std::string& path) {
     problems.add("", "cannot read the file");
     problems.raise();
   }
+  return readScene(in, path);
+}
+
+Scene readScene(std::istream& in, const std::string& path) {
+  Problems problems(path);
   json root;
   try {
-    root = json::parse(in);
-  } catch (const json::exception& e) {
-    // A syntax error, or a number too large for a double (1e999). nlohmann's what()
-    // starts with "[json.exception.parse_error.101] "; keep the sentence.
-    const std::string what = e.what();
-    problems.add("", "malformed JSON: " + what.substr(what.find("] ") == std::string::npos ? 0 : what.find("] ") + 2));
+    root = parseJsonText(in);
+  } catch (const std::runtime_error& e) {
+    problems.add("", std::string("malformed JSON: ") + e.what());
     problems.raise();
   }
   if (!root.is_object()) {

@@ -3,6 +3,7 @@
 // before anything runs.
 
 #include <Eigen/Geometry>
+#include <istream>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,10 @@ struct Scene {
 /// meshes on dynamic bodies, inside-out meshes. Interpenetration at the start is checked
 /// by checkInitialState (it needs the collision module).
 Scene loadScene(const std::string& path);
+
+/// The same for scene text read from `in`, reported as the file `path` (OBJ files are
+/// looked up next to it).
+Scene readScene(std::istream& in, const std::string& path);
 
 /// The collision database of the scene's bodies at their initial poses, in scene order.
 collision::ObjectDatabase buildObjectDatabase(const Scene& scene);

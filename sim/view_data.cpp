@@ -25,8 +25,9 @@ ordered_json numbersOrNull(const std::vector<double>& values) {
   return out;
 }
 
-// The step lines of a log, parsed; a line cut short is an error, not the log's end.
-std::vector<ordered_json> readLines(const std::string& path) {
+// The step lines of a log, parsed. A last line without its end of line is a run stopped
+// while writing it (killed, or a full disk): it is left out, and `cutShort` says so.
+std::vector<ordered_json> readLines(const std::string& path, std::string& cutShort) {
   if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": not a file (a step log is one)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot read it");
@@ -35,8 +36,10 @@ std::vector<ordered_json> readLines(const std::string& path) {
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     if (line.empty()) continue;
     const std::string where = path + " line " + std::to_string(lineNo);
-    if (in.eof())  // no newline after it: the run was stopped mid-write
-      throw std::runtime_error(where + ": cut short (no end of line; the run stopped while writing it)");
+    if (in.eof()) {
+      cutShort = where + ": cut short (the run stopped while writing it); the page ends at the step before";
+      break;
+    }
     try {
       lines.push_back(ordered_json::parse(line));
     } catch (const std::exception&) {
@@ -103,7 +106,8 @@ ordered_json sceneToViewJson(const Scene& scene) {
 }
 
 ordered_json logToViewJson(const std::string& logPath, const Scene& scene) {
-  const std::vector<ordered_json> lines = readLines(logPath);
+  std::string cutShort;
+  const std::vector<ordered_json> lines = readLines(logPath, cutShort);
   std::map<std::string, int> slotOf;  // dynamic body name -> its place in a frame
   std::vector<int> dynamic;
   for (size_t i = 0; i < scene.bodies.size(); ++i)
@@ -173,7 +177,8 @@ ordered_json logToViewJson(const std::string& logPath, const Scene& scene) {
           {"events", events},
           {"poses", base64(bytes.data(), bytes.size())},
           {"contactSets", anyContacts ? contactSets : ordered_json(nullptr)},
-          {"contactSetOf", contactSetOf}};
+          {"contactSetOf", contactSetOf},
+          {"cutShort", cutShort.empty() ? ordered_json(nullptr) : ordered_json(cutShort)}};
 }
 
 std::string sceneNamedByLog(const std::string& logPath) {

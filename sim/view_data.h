@@ -25,10 +25,11 @@ nlohmann::ordered_json sceneToViewJson(const Scene& scene);
 ///   `polysim run --log-contacts`; per pair a, b and per contact type, normal, points),
 ///   or null when it holds none; contactSetOf: per frame, the index of its set (a resting
 ///   scene repeats one set, so a 1000-box log stays small).
+/// - cutShort: null, or (a run stopped while writing its last line: killed, or a full
+///   disk) which line was cut short and left out.
 /// Throws std::runtime_error naming the log, the line and the field when a line is not a
-/// step (a line cut short mid-write included: the page would end early without a word),
-/// when the log has no step, and when its bodies are not the scene's dynamic bodies
-/// (naming the body and the scene).
+/// step, when the log has no whole step, and when its bodies are not the scene's dynamic
+/// bodies (naming the body and the scene).
 nlohmann::ordered_json logToViewJson(const std::string& logPath, const Scene& scene);
 
 /// The scene file a step log names on its first line (`scene`), or "" when it names none.

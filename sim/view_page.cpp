@@ -47,7 +47,7 @@ std::string scriptSafe(const std::string& json) {
 
 }  // namespace
 
-std::string writeViewPage(const ViewOptions& options) {
+ViewPage writeViewPage(const ViewOptions& options) {
   if (options.logs.empty()) throw std::invalid_argument("polysim view: no step log given");
   std::string scenePath = options.scene.value_or(sceneNamedByLog(options.logs.front()));
   if (scenePath.empty())
@@ -56,7 +56,11 @@ std::string writeViewPage(const ViewOptions& options) {
   nlohmann::ordered_json data;
   data["scene"] = sceneToViewJson(scene);
   data["runs"] = nlohmann::ordered_json::array();
-  for (const std::string& log : options.logs) data["runs"].push_back(logToViewJson(log, scene));
+  ViewPage written;
+  for (const std::string& log : options.logs) {
+    data["runs"].push_back(logToViewJson(log, scene));
+    if (!data["runs"].back()["cutShort"].is_null()) written.warnings.push_back(data["runs"].back()["cutShort"]);
+  }
 
   std::string page = viewer::kPage;
   fill(page, "THREE", readThreeJs("three.min.js"));
@@ -70,7 +74,8 @@ std::string writeViewPage(const ViewOptions& options) {
     if (std::filesystem::exists(out) && std::filesystem::equivalent(out, input))
       throw std::invalid_argument("--out: " + out + " is the step log itself");
   writeWholeFile(out, "the view page", [&page](std::ostream& file) { file << page; });
-  return out;
+  written.path = out;
+  return written;
 }
 
 }  // namespace polysim::sim

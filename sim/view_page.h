@@ -14,10 +14,15 @@ struct ViewOptions {
   std::string out;                   // default: the first log with the extension .html
 };
 
+struct ViewPage {
+  std::string path;
+  std::vector<std::string> warnings;  // logs cut short: each is shown up to its last whole step
+};
+
 /// Reads the scene and the logs (view_data.h), and writes the page whole (or nothing) to
 /// the output path, which it returns. Throws SceneError for a bad scene and
 /// std::runtime_error naming the file, line and field for a bad or mismatched log, when
 /// no scene is given or named, and when three.js (Debian's libjs-three) is missing.
-std::string writeViewPage(const ViewOptions& options);
+ViewPage writeViewPage(const ViewOptions& options);
 
 }  // namespace polysim::sim

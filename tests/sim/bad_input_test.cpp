@@ -144,5 +144,49 @@ TEST_F(BadInput, ScenesThatCannotBeSimulatedAreRefusedByName) {
   expectOneError(polysim("run " + fast + " --duration 0.1"), {"fast.json: body \"box\": its state overflowed"});
 }
 
+// Paths go into JSON (the step log names its scene), and JSON is UTF-8: a path that is
+// not used to run to the end and fail there with a library's message.
+TEST_F(BadInput, APathThatIsNotUtf8IsRefusedBeforeTheRun) {
+  const std::string latin1 = "sc\xe8ne.json";
+  fs::copy_file(scene_, dir_ / latin1);
+  expectOneError(polysim("run '" + latin1 + "' --log out.jsonl"), {"SCENE: the path \"sc\xef\xbf\xbdne.json\" is not valid UTF-8"});
+  EXPECT_FALSE(fs::exists(dir_ / "out.jsonl"));
+  expectOneError(polysim("run " + scene_ + " --log 'l\xe8g.jsonl'"), {"--log: the path", "is not valid UTF-8"});
+  expectOneError(polysim("make stack --out 'st\xe8" "ck.json'"), {"--out: the path", "is not valid UTF-8"});
+  // A UTF-8 name runs.
+  fs::copy_file(scene_, dir_ / "sc\xc3\xa8ne.json");
+  EXPECT_EQ(polysim("run 'sc\xc3\xa8ne.json' --duration 0.05 --log 'l\xc3\xa8g.jsonl'").status, 0);
+}
+
+TEST_F(BadInput, AFileThatIsNotAnObjMeshIsSaidToBeNone) {
+  auto sceneWith = [&](const std::string& obj) {
+    const std::string name = "scene_" + std::to_string(std::hash<std::string>{}(obj)) + ".json";
+    write(name, R"({"bodies": [{"name": "ground", "static": true, "shape": {"type": "box", "size": [10, 10, 1]},
+                                 "position": [0, 0, -0.5]},
+                               {"name": "cup", "shape": {"type": "obj", "file": ")" + obj + R"("}, "position": [0, 0, 2]}]})");
+    return polysim("run " + name + " --duration 0.05");
+  };
+  const std::string prefix = "body \"cup\": shape: file \"";
+  write("empty.obj", "");
+  expectOneError(sceneWith("empty.obj"), {prefix + "empty.obj\": not an OBJ mesh: it has no vertex"});
+  write("binary.obj", std::string("v 0 0 0\n\x7f" "ELF\x02\x01\x01\0\0", 17));
+  expectOneError(sceneWith("binary.obj"), {prefix + "binary.obj\": line 2: binary data, not OBJ text"});
+  fs::create_directories(dir_ / "folder.obj");
+  expectOneError(sceneWith("folder.obj"), {prefix + "folder.obj\": not a file, so not an OBJ mesh"});
+  write("passwd", "root:x:0:0:root:/root:/bin/bash\n");  // any text file a path may reach
+  expectOneError(sceneWith("passwd"), {prefix + "passwd\": line 1: \"root:x:0:0:root:/root:/bin/bash\" is not an OBJ statement"});
+  const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+  write("back.obj", tetrahedron + "f -3 -2 -9\n");
+  expectOneError(sceneWith("back.obj"), {prefix + "back.obj\": line 8: face index -9 reaches back past the first vertex (4 read so far)"});
+  write("ahead.obj", tetrahedron + "f 2 3 5\n");
+  expectOneError(sceneWith("ahead.obj"), {prefix + "ahead.obj\": face 4 uses vertex 5, but the file has 4"});
+  write("nofaces.obj", "# vertices only\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  expectOneError(sceneWith("nofaces.obj"), {prefix + "nofaces.obj\": not an OBJ mesh: it has no face"});
+  // A real OBJ with the statements a modeller writes (groups, materials, normals) is read.
+  write("real.obj", "mtllib cup.mtl\no tet\n" + tetrahedron + "vn 0 0 1\nusemtl steel\ns off\nf 2//1 3//1 4//1\n");
+  const Outcome real = sceneWith("real.obj");
+  EXPECT_EQ(real.status, 0) << real.err;
+}
+
 }  // namespace
 }  // namespace polysim::sim

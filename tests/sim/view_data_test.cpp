@@ -125,12 +125,21 @@ TEST_F(ViewLog, AnUnfitLogIsRefusedByLineAndField) {
   EXPECT_NE(errorFor(withLine(2, R"({"step": 2, "t": 0.1, "events": [], "bodies": [{"name": "box", "position": [0, 0]}]})"))
                 .find("line 2: body 0: \"position\" is not 3 numbers"),
             std::string::npos);
-  const std::string cut = ::polysim::test::tempPath("polysim_view_data_cut.jsonl");
-  std::ofstream(cut) << lines_[0] << "\n" << lines_[1].substr(0, lines_[1].size() / 2);
-  EXPECT_NE(errorFor(cut).find("line 2: cut short"), std::string::npos) << errorFor(cut);
   const std::string empty = ::polysim::test::tempPath("polysim_view_data_empty.jsonl");
   std::ofstream(empty) << "";
   EXPECT_NE(errorFor(empty).find("holds no step"), std::string::npos);
+}
+
+// A run killed while writing a line leaves it without its end of line: the page shows the
+// steps before it, and says which line it left out.
+TEST_F(ViewLog, ALastLineCutShortIsLeftOutAndNamed) {
+  const std::string cut = ::polysim::test::tempPath("polysim_view_data_cut.jsonl");
+  std::ofstream(cut) << lines_[0] << "\n" << lines_[1] << "\n" << lines_[2].substr(0, lines_[2].size() / 2);
+  const nlohmann::ordered_json run = logToViewJson(cut, scene_);
+  EXPECT_EQ(run["frames"], 3);  // the initial state and the two whole steps
+  ASSERT_TRUE(run["cutShort"].is_string());
+  EXPECT_NE(run["cutShort"].get<std::string>().find("line 3: cut short"), std::string::npos) << run["cutShort"];
+  EXPECT_TRUE(logToViewJson(log_, scene_)["cutShort"].is_null());
 }
 
 }  // namespace
