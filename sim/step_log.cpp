@@ -76,8 +76,12 @@ void StepLog::write(const World& world, const StepReport& report) {
 void StepLog::write(nlohmann::ordered_json line, const std::string& sceneFile) {
   if (first_) line["scene"] = std::filesystem::absolute(sceneFile).string();
   first_ = false;
-  out_ << line.dump() << "\n";
-  out_.flush();  // every finished step readable even if the run is interrupted
+  // The line and its end in one write, flushed: a run killed between steps leaves only
+  // whole lines, and one killed inside a write leaves a last line without its end, which
+  // readers know as cut short.
+  const std::string text = line.dump() + "\n";
+  out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out_.flush();
   if (!out_) throw std::runtime_error(path_ + ": writing the step log failed");
 }
 
