@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "collision/aabb.h"
@@ -52,7 +53,7 @@ const StepReport& World::step(double dt) {
   for (const collision::PairResult& p : contacts_)
     if (awake(p.a) || awake(p.b)) moving.push_back(p);
   supportTouchingBodies(moving, dt);  // gravity into the velocities of bodies in contact; the others fly free
-  resolveContacts(moving, dt, true);  // the contacts the step starts with (resting, stacked)
+  resolveContacts(moving, dt, true, dynamics::kAllowedOverlapFraction * db_.tolerance);  // the contacts the step starts with
   std::vector<collision::PairResult> contactsAfter;
   std::vector<char> stepped(bodies_.size(), 0);
   for (const std::vector<int>& island : islandsOfStep(dt)) {
@@ -73,6 +74,37 @@ const StepReport& World::step(double dt) {
   time_ = sum;
   report_.time = time_;
   return report_;
+}
+
+void World::placeBody(int body, const Eigen::Isometry3d& pose, const Eigen::Vector3d& velocity,
+                      const Eigen::Vector3d& angularVelocity) {
+  dynamics::RigidBody& b = bodies_[body];
+  const std::string& name = scene_.bodies[body].name;
+  if (b.isStatic) throw std::invalid_argument("placeBody: \"" + name + "\" is static");
+  dynamics::RigidBody placed = b;
+  placed.position = pose.translation();
+  placed.orientation = Eigen::Quaterniond(pose.linear());
+  placed.velocity = velocity;
+  placed.angularVelocity = angularVelocity;
+  collision::ObjNode& node = db_.objects[body];
+  const Eigen::Isometry3d before = node.X_WO;
+  node.X_WO = placed.pose();  // exactly the pose the body's state gives, as after a step
+  node.ctrans = nullptr;
+  collision::IntersectionResult now = collision::test4Intersection(db_, workspace_);
+  if (now.status == collision::Status::Interpenetrating) {
+    node.X_WO = before;
+    throw std::invalid_argument("placeBody: \"" + name + "\" would interpenetrate another body there");
+  }
+  for (const collision::PairResult& p : contacts_)  // what rested on it falls once it is gone
+    if (p.a == body || p.b == body)
+      for (int other : {p.a, p.b}) asleep_[other] = 0, slowFor_[other] = 0.0;
+  asleep_[body] = 0;
+  slowFor_[body] = 0.0;
+  b = placed;
+  contacts_ = std::move(now.pairs);
+  lastSolved_.erase(std::remove_if(lastSolved_.begin(), lastSolved_.end(),
+                                   [body](const dynamics::ContactPoint& p) { return p.a == body || p.b == body; }),
+                    lastSolved_.end());
 }
 
 void World::wake(int body) {
@@ -133,15 +165,17 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     if (toc.stoppedBy == collision::TocStop::NoInterpenetration) break;
     toc.pairs = contacts;
     report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
-    if (++events == kMaxEventsPerStep) {                     // rest out the step (see kMaxEventsPerStep)
+    if (++events == kMaxEventsPerStep) {                     // the island's clock stops (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
-      for (int i : island)
-        if (free_[i]) dynamics::integrateVelocity(bodies_[i], scene_.gravity, remaining);
       break;
     }
-    resolveContacts(contacts, remaining, false);             // impulses at the contact
-    if (supportTouchingBodies(contacts, remaining))          // bodies that landed take the rest of the step's gravity,
-      resolveContacts(contacts, remaining, false);           // after their impact, and their contacts carry it
+    // No progress at all: the solver's contacts approach nowhere, yet the detector finds
+    // a pair interpenetrating at once (see kStalledGapFraction); push them apart.
+    const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
+                                                : -kStalledGapFraction * db_.tolerance;
+    resolveContacts(contacts, remaining, false, allowedOverlap);  // impulses at the contact
+    if (supportTouchingBodies(contacts, remaining))               // bodies that landed take the rest of the step's gravity,
+      resolveContacts(contacts, remaining, false, allowedOverlap);  // after their impact, and their contacts carry it
   }
   contactsAfter.insert(contactsAfter.end(), contacts.begin(), contacts.end());
 }
@@ -187,7 +221,8 @@ bool World::supportTouchingBodies(const std::vector<collision::PairResult>& cont
   return any;
 }
 
-void World::resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember) {
+void World::resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember,
+                            double allowedOverlap) {
   std::vector<dynamics::ContactPoint> points;
   for (const collision::PairResult& pair : contacts) {
     const PairMaterial& a = materials_[pair.a];
@@ -217,7 +252,6 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
         break;
       }
   }
-  const double allowedOverlap = dynamics::kAllowedOverlapFraction * db_.tolerance;
   report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap).iterations;
   if (!remember) return;
   for (dynamics::ContactPoint& p : points) {

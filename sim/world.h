@@ -15,11 +15,20 @@ namespace polysim::sim {
 
 /// Most contact events (collisionDetect() returning before the end of the remaining
 /// step) one island handles in one step. A box bouncing ever lower has infinitely many
-/// bounces in finite time; past this bound the rest of the island's step is spent at
-/// rest (bodies keep their resolved velocities, poses stay), and the step records that
-/// it hit the bound.
+/// bounces in finite time; past this bound the island's clock stops for the rest of the
+/// step (poses stay, and so do velocities: a free body gains no gravity for time it did
+/// not fly, or it would gain energy every such step), and the step records that it hit
+/// the bound.
 inline constexpr int kMaxEventsPerStep = 8;
 
+/// An event that makes no progress (collisionDetect() returns the very state it started
+/// from) has its contacts pushed apart to this fraction of the tolerance as a gap. It
+/// happens when the solver's view and the detector's disagree: an edge crossing an edge
+/// has its gap measured along the edges' common normal, while the polygons' test measures
+/// the cut through a face, deeper by up to the secant of the angle between the two; at
+/// the band's edge the first finds nothing approaching and the second an interpenetration
+/// at once, and every event would return to the same state.
+inline constexpr double kStalledGapFraction = 0.5;
 /// A contact point is taken for last solve's point of the same pair when it lies within
 /// this distance (m) of it; it then starts from that point's force (warm start). Resting
 /// contacts reappear at the same place to round-off; 1 mm is far from both.
@@ -53,6 +62,9 @@ struct StepReport {
 class World {
  public:
   explicit World(const Scene& scene, collision::TocMethod method = collision::TocMethod::Bisection);
+  // Not copied or moved: the database's objects point at the bodies' paths inside it.
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
 
   /// Advances the world by the scene's dt (or `dt` when given) and reports the step.
   const StepReport& step(double dt);
@@ -68,6 +80,13 @@ class World {
   /// The body is asleep (scene "sleep"): it keeps its pose exactly and costs nothing
   /// until a body that moves can reach it.
   bool asleep(int body) const { return asleep_[body] != 0; }
+  /// Moves dynamic body `body` between steps to `pose` (body frame to world) with the
+  /// given velocities (m/s, rad/s, world), as a user refilling a pile or respawning a body
+  /// would. The body and every body it touched wake; its old contacts and their warm
+  /// starts are dropped. Throws std::invalid_argument, changing nothing, when `body` is
+  /// static or the pose interpenetrates another body beyond the tolerance.
+  void placeBody(int body, const Eigen::Isometry3d& pose, const Eigen::Vector3d& velocity,
+                 const Eigen::Vector3d& angularVelocity);
   /// The first time a pair was in contact (s), or a negative value if none yet.
   double firstContactTime() const { return firstContact_; }
 
@@ -82,9 +101,11 @@ class World {
   /// The pair has restitution and some contact point approaches faster than
   /// kBounceThreshold: the solve will bounce it.
   bool bounces(const collision::PairResult& pair) const;
-  /// Solves `contacts` over `horizon` seconds. `remember`: keep the result as the forces
-  /// the next solves warm-start from.
-  void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember);
+  /// Solves `contacts` over `horizon` seconds; contacts overlapping deeper than
+  /// `allowedOverlap` (m) are pushed apart (contact_solver.h). `remember`: keep the result
+  /// as the forces the next solves warm-start from.
+  void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember,
+                       double allowedOverlap);
   /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
   /// that overlap over `duration`.
   std::vector<std::vector<int>> islandsOfStep(double duration) const;
