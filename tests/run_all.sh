@@ -8,8 +8,11 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPOLYSIM_BUILD_TESTS=ON
 cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2
 
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPOLYSIM_BUILD_TESTS=ON -DPOLYSIM_SANITIZE=ON \
-  -DPOLYSIM_BUILD_BENCHMARKS=OFF
+# The sanitizer pass is clang's, so that the libFuzzer targets (tests/fuzz) build with it
+# and run as its Fuzz.* tests; the optimized pass above is g++'s, so both compilers keep
+# the build warning-free.
+cmake -S . -B build-sanitize -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPOLYSIM_BUILD_TESTS=ON \
+  -DPOLYSIM_SANITIZE=ON -DPOLYSIM_FUZZ=ON -DPOLYSIM_BUILD_BENCHMARKS=OFF
 cmake --build build-sanitize -j2
 # The 60-second stack scenarios run about 25 times slower under the sanitizers (the
 # 20-box stack alone would take 16 minutes); they run in the optimized pass above, and
