@@ -144,6 +144,7 @@ collision::MeshData meshFromJson(Fields& shape) {
   const json& faces = shape.raw("faces");
   if (!vertices.is_array()) return shape.problem("vertices must be an array of [x, y, z]"), mesh;
   if (!faces.is_array()) return shape.problem("faces must be an array of vertex index lists"), mesh;
+  if (vertices.empty()) return shape.problem("vertices is empty (a mesh needs at least 3)"), mesh;
   for (size_t i = 0; i < vertices.size(); ++i) {
     const json& v = vertices[i];
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())

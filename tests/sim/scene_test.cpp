@@ -150,6 +150,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "sleep: enabled must be true or false (got a string)"},
         Rejection{"sleep_unknown_field", R"({"sleep": {"treshold": 1}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
                   "sleep: unknown field \"treshold\""},
+        Rejection{"empty_mesh", SceneFiles::withBody(R"("shape": {"type": "mesh", "vertices": [], "faces": []})"),
+                  "body \"box\": shape: vertices is empty (a mesh needs at least 3)"},
         Rejection{"number_beyond_a_double",
                   R"({"bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}, "velocity": [0, 1e999, 0]}]})",
                   "malformed JSON: number overflow parsing '1e999' at bodies[0].velocity[1]"},
