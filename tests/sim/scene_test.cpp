@@ -77,6 +77,8 @@ TEST_F(SceneFiles, LoadsWithSpecDefaults) {
 struct Rejection {
   std::string name, scene, expected;
 };
+// ctest names each case by this (otherwise, under clang, by the struct's bytes).
+void PrintTo(const Rejection& r, std::ostream* os) { *os << r.name; }
 
 class SceneRejection : public SceneFiles, public ::testing::WithParamInterface<Rejection> {};
 
