@@ -13,10 +13,11 @@ namespace {
 // Every statement of the OBJ format (Wavefront's appendix B1), so that a real file with
 // curves or materials is read, and a file of some other kind is not taken for an empty one.
 constexpr std::array kObjStatements = {
-    "v",      "vt",     "vn",    "vp",     "f",      "l",          "p",         "g",     "o",        "s",
-    "mg",     "mtllib", "usemtl", "maplib", "usemap", "lod",       "shadow_obj", "trace_obj", "bevel", "c_interp",
-    "d_interp", "cstype", "deg",  "bmat",   "step",   "curv",       "curv2",     "surf",  "parm",     "trim",
-    "hole",   "scrv",   "sp",    "end",    "con",    "ctech",      "stech",     "call",  "csh"};
+    "v", "vt", "vn", "vp", "f", "l", "p",                                        // vertex data, elements
+    "g", "o", "s", "mg", "mtllib", "usemtl", "maplib", "usemap",                 // grouping, display
+    "lod", "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp",           // render attributes
+    "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim",    // free-form geometry
+    "hole", "scrv", "sp", "end", "con", "ctech", "stech", "call", "csh"};
 
 bool isObjStatement(const std::string& tag) {
   return std::find(kObjStatements.begin(), kObjStatements.end(), tag) != kObjStatements.end();

@@ -29,6 +29,7 @@ inline constexpr int kMaxEventsPerStep = 8;
 /// the band's edge the first finds nothing approaching and the second an interpenetration
 /// at once, and every event would return to the same state.
 inline constexpr double kStalledGapFraction = 0.5;
+
 /// A contact point is taken for last solve's point of the same pair when it lies within
 /// this distance (m) of it; it then starts from that point's force (warm start). Resting
 /// contacts reappear at the same place to round-off; 1 mm is far from both.
