@@ -162,9 +162,9 @@ double solveNormalRow(Row& r) {
 // velocities >= their targets and complementary. Falls back to row by row when the
 // small problem has no solution (round-off at a degenerate manifold).
 // A block's coupling matrix (constant through a solve: the poses do not move).
-Eigen::MatrixXd couplingMatrix(const std::vector<Row>& rows, const std::vector<int>& block) {
+BlockMatrix couplingMatrix(const std::vector<Row>& rows, const std::vector<int>& block) {
   const int n = static_cast<int>(block.size());
-  Eigen::MatrixXd A(n, n);
+  BlockMatrix A(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) A(i, j) = coupling(rows[block[i]], rows[block[j]]);
   return A;
@@ -173,15 +173,15 @@ Eigen::MatrixXd couplingMatrix(const std::vector<Row>& rows, const std::vector<i
 double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const SmallLcp& lcp) {
   const int n = static_cast<int>(block.size());
   if (n == 1) return solveNormalRow(rows[block[0]]);
-  const Eigen::MatrixXd& A = lcp.matrix();
-  Eigen::VectorXd b(n), old(n);
+  const BlockMatrix& A = lcp.matrix();
+  BlockVector b(n), old(n);
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
     old(i) = ri.normalImpulse;
     b(i) = ri.normal.dot(relativeVelocity(ri)) - ri.target;
   }
   b -= A * old;
-  const std::optional<Eigen::VectorXd> x = lcp.solve(b);
+  const std::optional<BlockVector> x = lcp.solve(b);
   double change = 0.0;
   if (!x) {
     for (int k : block) change = std::max(change, solveNormalRow(rows[k]));
@@ -311,7 +311,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
   std::vector<SmallLcp> couplings;  // per block, its coupling matrix: constant through the sweeps
   couplings.reserve(blocks.size());
-  for (const std::vector<int>& block : blocks) couplings.emplace_back(block.size() > 1 ? couplingMatrix(rows, block) : Eigen::MatrixXd());
+  for (const std::vector<int>& block : blocks) couplings.emplace_back(block.size() > 1 ? couplingMatrix(rows, block) : BlockMatrix());
   while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass

@@ -1,6 +1,6 @@
 #include "dynamics/small_lcp.h"
 
-#include <Eigen/Dense>
+#include <Eigen/QR>
 #include <algorithm>
 #include <vector>
 
@@ -29,47 +29,57 @@ const std::vector<unsigned>& setsLargestFirst(int n) {
   return table[n];
 }
 
-std::vector<int> members(unsigned set, int n) {
-  std::vector<int> in;
+// The points of a set, in order, and how many there are.
+struct Members {
+  std::array<int, kMaxBlockSize> index{};
+  int count = 0;
+};
+
+Members membersOf(unsigned set, int n) {
+  Members m;
   for (int i = 0; i < n; ++i)
-    if (set & (1u << i)) in.push_back(i);
-  return in;
+    if (set & (1u << i)) m.index[m.count++] = i;
+  return m;
 }
 
 }  // namespace
 
-SmallLcp::SmallLcp(const Eigen::MatrixXd& A) : A_(A), largestCoefficient_(A.size() ? A.cwiseAbs().maxCoeff() : 0.0) {}
+SmallLcp::SmallLcp(const BlockMatrix& A) : A_(A), largestCoefficient_(A.size() ? A.cwiseAbs().maxCoeff() : 0.0) {}
 
-std::optional<Eigen::VectorXd> SmallLcp::solve(const Eigen::VectorXd& b) const {
+std::optional<BlockVector> SmallLcp::solve(const BlockVector& b) const {
   const int n = static_cast<int>(b.size());
   // Round-off scale of the residuals: the problem's own magnitudes.
   const double scale = kLcpRoundOff * std::max({1.0, largestCoefficient_, b.cwiseAbs().maxCoeff()});
   for (unsigned set : setsLargestFirst(n)) {
-    const std::vector<int> in = members(set, n);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-    if (!in.empty()) {
-      std::optional<Decomposition>& solver = decompositions_[set];
-      if (!solver) {
-        Eigen::MatrixXd Ass(in.size(), in.size());
-        for (size_t i = 0; i < in.size(); ++i)
-          for (size_t j = 0; j < in.size(); ++j) Ass(i, j) = A_(in[i], in[j]);
-        solver.emplace(Ass);
+    const Members in = membersOf(set, n);
+    BlockVector x = BlockVector::Zero(n);
+    if (in.count > 0) {
+      std::optional<BlockMatrix>& pinv = pseudoInverses_[set];
+      if (!pinv) {
+        BlockMatrix Ass(in.count, in.count);
+        for (int i = 0; i < in.count; ++i)
+          for (int j = 0; j < in.count; ++j) Ass(i, j) = A_(in.index[i], in.index[j]);
+        // The least-norm solution's operator, as CompleteOrthogonalDecomposition::solve
+        // would apply it: rank found to the decomposition's own threshold.
+        pinv.emplace(Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse());
       }
-      Eigen::VectorXd bs(in.size());
-      for (size_t i = 0; i < in.size(); ++i) bs(i) = b(in[i]);
-      const Eigen::VectorXd xs = solver->solve(-bs);
-      for (size_t i = 0; i < in.size(); ++i) x(in[i]) = xs(i);
+      BlockVector bs(in.count);
+      for (int i = 0; i < in.count; ++i) bs(i) = b(in.index[i]);
+      const BlockVector xs = -(*pinv * bs);
+      for (int i = 0; i < in.count; ++i) x(in.index[i]) = xs(i);
     }
-    const Eigen::VectorXd w = A_ * x + b;
+    const BlockVector w = A_ * x + b;
     bool valid = true;
     for (int i = 0; i < n && valid; ++i) valid = (set & (1u << i)) ? x(i) >= -scale && std::abs(w(i)) <= scale : w(i) >= -scale;
-    if (valid) return x.cwiseMax(0.0);
+    if (valid) return BlockVector(x.cwiseMax(0.0));
   }
   return std::nullopt;
 }
 
 std::optional<Eigen::VectorXd> solveSmallLcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
-  return SmallLcp(A).solve(b);
+  const std::optional<BlockVector> x = SmallLcp(A).solve(b);
+  if (!x) return std::nullopt;
+  return Eigen::VectorXd(*x);
 }
 
 }  // namespace polysim::dynamics

@@ -4,7 +4,6 @@
 // two-point solver does), instead of one corner after another.
 
 #include <Eigen/Core>
-#include <Eigen/QR>
 #include <array>
 #include <optional>
 
@@ -14,26 +13,31 @@ namespace polysim::dynamics {
 /// face). Larger manifolds are solved point by point.
 inline constexpr int kMaxBlockSize = 4;
 
+/// A block's vector and matrix: at most kMaxBlockSize entries a side, stored in place, so
+/// that the sweeps, which solve every block once each, never allocate.
+using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxBlockSize, 1>;
+using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockSize, kMaxBlockSize>;
+
 /// The problems x >= 0, w = A x + b >= 0, x . w = 0 for one symmetric positive
 /// semidefinite A (n <= kMaxBlockSize) and any b: a contact's block through the sweeps of
 /// one solve, where A stays and b changes. Each set of points that push is tried, largest
 /// sets first; where A is singular (four coplanar corners of one rigid face carry a load
 /// in infinitely many ways), a set's system is solved in the least-norm sense, so the
 /// load spreads evenly, as on a real face, not onto whichever corner came first. Each
-/// set's decomposition is made once, when first needed.
+/// set's pseudo-inverse is made once, when first needed; a solve is then products of
+/// matrices of at most 4 x 4.
 class SmallLcp {
  public:
-  explicit SmallLcp(const Eigen::MatrixXd& A);
-  const Eigen::MatrixXd& matrix() const { return A_; }
+  explicit SmallLcp(const BlockMatrix& A);
+  const BlockMatrix& matrix() const { return A_; }
   /// The solution for `b`, or empty when no set satisfies the conditions within
   /// kLcpRoundOff of the problem's scale.
-  std::optional<Eigen::VectorXd> solve(const Eigen::VectorXd& b) const;
+  std::optional<BlockVector> solve(const BlockVector& b) const;
 
  private:
-  using Decomposition = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>;
-  Eigen::MatrixXd A_;
+  BlockMatrix A_;
   double largestCoefficient_;
-  mutable std::array<std::optional<Decomposition>, 1u << kMaxBlockSize> decompositions_;  // by set
+  mutable std::array<std::optional<BlockMatrix>, 1u << kMaxBlockSize> pseudoInverses_;  // by set, its rows and columns
 };
 
 /// SmallLcp(A).solve(b): one problem on its own.
