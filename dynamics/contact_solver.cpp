@@ -5,6 +5,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
 #include "dynamics/small_lcp.h"
 
@@ -133,6 +134,28 @@ std::vector<std::vector<int>> blocksOf(const std::vector<Row>& rows) {
   return split;
 }
 
+// The blocks in groups that share no moving body, each group's blocks in their order.
+// A sweep of one group changes no velocity another group reads, so each group is swept
+// until it converges on its own: a pile whose one corner will not settle keeps sweeping
+// that corner's group, not every contact of the solve.
+std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks, int bodyCount) {
+  DisjointSets sets(bodyCount);
+  for (const std::vector<int>& block : blocks) {
+    const Row& r = rows[block.front()];  // a block's rows share their two bodies
+    if (!r.a->isStatic && !r.b->isStatic) sets.join(r.source->a, r.source->b);
+  }
+  std::vector<std::vector<int>> groups;
+  std::unordered_map<int, size_t> groupOfRoot;
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const Row& r = rows[blocks[k].front()];
+    const int moving = r.a->isStatic ? r.source->b : r.source->a;
+    const auto [at, fresh] = groupOfRoot.try_emplace(sets.root(moving), groups.size());
+    if (fresh) groups.emplace_back();
+    groups[at->second].push_back(static_cast<int>(k));
+  }
+  return groups;
+}
+
 // One row's friction impulse, clamped to the disk of its current normal impulse (no
 // work for a frictionless row). Returns the change over the lighter body's mass (m/s).
 double solveFrictionRow(Row& r) {
@@ -194,6 +217,27 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
     change = std::max(change, std::abs(r.normalImpulse - old(i)) * std::max(r.a->inverseMass, r.b->inverseMass));
   }
   return change;
+}
+
+// Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
+// kMaxSolverIterations are made: each block's friction rows, then its normal impulses.
+SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
+                      const std::vector<SmallLcp>& couplings, const std::vector<int>& group) {
+  SolveStats stats;
+  while (stats.iterations < kMaxSolverIterations) {
+    ++stats.iterations;
+    double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
+    for (int k : group) {
+      stats.rowSolves += static_cast<long>(blocks[k].size());
+      for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplings[k]));
+    }
+    if (largestChange < kSolverVelocityTolerance) {
+      stats.converged = true;
+      break;
+    }
+  }
+  return stats;
 }
 
 // Poisson restitution: each bouncing contact pushes apart again with e times the impulse
@@ -307,22 +351,17 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     }
     applyPair(r, r.normalImpulse * r.normal + r.frictionImpulse.x() * r.tangent1 + r.frictionImpulse.y() * r.tangent2);
   }
-  SolveStats stats;
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
   std::vector<SmallLcp> couplings;  // per block, its coupling matrix: constant through the sweeps
   couplings.reserve(blocks.size());
   for (const std::vector<int>& block : blocks) couplings.emplace_back(block.size() > 1 ? couplingMatrix(rows, block) : BlockMatrix());
-  while (stats.iterations < kMaxSolverIterations && !rows.empty()) {
-    ++stats.iterations;
-    double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
-    for (size_t k = 0; k < blocks.size(); ++k) {
-      for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
-      largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplings[k]));
-    }
-    if (largestChange < kSolverVelocityTolerance) {
-      stats.converged = true;
-      break;
-    }
+  SolveStats stats;
+  stats.converged = true;
+  for (const std::vector<int>& group : groupsOf(rows, blocks, static_cast<int>(bodies.size()))) {
+    const SolveStats swept = sweepGroup(rows, blocks, couplings, group);
+    stats.iterations = std::max(stats.iterations, swept.iterations);
+    stats.converged = stats.converged && swept.converged;
+    stats.rowSolves += swept.rowSolves;
   }
   applyRestitution(rows, energyBefore);
   solvePushes(rows, allowedOverlap, dt);

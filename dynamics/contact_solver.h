@@ -34,8 +34,9 @@ struct ContactPoint {
 };
 
 struct SolveStats {
-  int iterations = 0;        // sweeps made
-  bool converged = false;    // stopped on kSolverVelocityTolerance, not the sweep limit
+  int iterations = 0;        // sweeps made (by the group of contacts that took the most)
+  bool converged = false;    // every group stopped on kSolverVelocityTolerance, not the sweep limit
+  long rowSolves = 0;        // contact points solved, summed over all sweeps: the sweeps' work
 };
 
 /// Changes the bodies' velocities so that no contact approaches: every contact ends with
@@ -52,6 +53,8 @@ struct SolveStats {
 /// contacts with zero friction skip all friction work.
 /// Starting from each contact's given impulses (warm start) lets a resting stack carry
 /// its weight from the first sweep; they are clamped to the same limits first.
+/// Contacts that share no moving body (two piles on one floor) are swept apart, each
+/// group until it converges (or reaches kMaxSolverIterations) on its own.
 /// Then the push velocities of the bodies touched are set afresh (split impulses,
 /// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at
 /// (depth - allowedOverlap) / dt or more, no contact's push approaches, and push impulses

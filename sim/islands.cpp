@@ -1,33 +1,16 @@
 #include "sim/islands.h"
 
 #include <algorithm>
-#include <numeric>
+
+#include "dynamics/disjoint_sets.h"
 
 namespace polysim::sim {
-namespace {
-
-// Union-find with path halving; the root of a set is its smallest member, so that the
-// islands come out in a fixed order.
-struct Sets {
-  explicit Sets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int root(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(int i, int j) {
-    i = root(i), j = root(j);
-    if (i != j) parent[std::max(i, j)] = std::min(i, j);
-  }
-  std::vector<int> parent;
-};
-
-}  // namespace
 
 std::vector<std::vector<int>> findIslands(const std::vector<Eigen::AlignedBox3d>& bounds,
                                           const std::vector<char>& isDynamic,
                                           const std::vector<std::pair<int, int>>& links) {
   const int n = static_cast<int>(bounds.size());
-  Sets sets(n);
+  dynamics::DisjointSets sets(n);
   for (const auto& [i, j] : links)
     if (isDynamic[i] && isDynamic[j]) sets.join(i, j);
   // Sweep along x: bodies sorted by their boxes' lower x, each compared with the ones
