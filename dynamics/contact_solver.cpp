@@ -5,6 +5,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "dynamics/contact_row.h"
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
 #include "dynamics/small_lcp.h"
@@ -12,92 +13,7 @@
 namespace polysim::dynamics {
 namespace {
 
-// A body as the sweeps see it, taken once per solve (a solve changes velocities, never
-// poses): its world inverse inertia and centre of mass. Recomputing them from the
-// quaternion at every impulse was most of a resting stack's solve time.
-struct BodyFrame {
-  Eigen::Matrix3d inverseInertia = Eigen::Matrix3d::Zero();  // 1 / (kg m^2), world axes
-  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();    // m, world
-};
-
-// A contact prepared for the sweeps: lever arms, effective masses, target, impulses.
-struct Row {
-  ContactPoint* source;
-  RigidBody* a;
-  RigidBody* b;
-  const BodyFrame* frameA;
-  const BodyFrame* frameB;
-  Eigen::Vector3d point, normal, tangent1, tangent2;
-  Eigen::Vector3d armA, armB;                                 // m, from each centre of mass to the point
-  double normalMass = 0, tangentMass1 = 0, tangentMass2 = 0;  // kg: 1 / (J M^-1 J^T)
-  double target = 0;                                          // m/s, least normal velocity
-  double separation = 0;                                      // m, as detected
-  double restitution = 0;                                     // 0 unless the contact bounces
-  double friction = 0;
-  double normalImpulse = 0;                                   // accumulated, N s
-  Eigen::Vector2d frictionImpulse = Eigen::Vector2d::Zero();  // accumulated, N s
-};
-
-// A body's velocities, or its push velocities (split impulses): the pairs the sweeps change.
-using Velocity = Eigen::Vector3d RigidBody::*;
-struct Velocities {
-  Velocity linear, angular;
-};
-constexpr Velocities kMomentum{&RigidBody::velocity, &RigidBody::angularVelocity};
-constexpr Velocities kPush{&RigidBody::pushVelocity, &RigidBody::pushAngularVelocity};
-
-// The velocity of a's material point at the contact relative to b's.
-Eigen::Vector3d relativeVelocity(const Row& r, Velocities v = kMomentum) {
-  return (r.a->*v.linear + (r.a->*v.angular).cross(r.armA)) - (r.b->*v.linear + (r.b->*v.angular).cross(r.armB));
-}
-
-// 1 / (n . (M_a^-1 + M_b^-1) n) for a unit direction n at the contact point.
-double effectiveMass(const Row& r, const Eigen::Vector3d& n) {
-  double k = r.a->inverseMass + r.b->inverseMass;
-  if (!r.a->isStatic) k += n.dot((r.frameA->inverseInertia * r.armA.cross(n)).cross(r.armA));
-  if (!r.b->isStatic) k += n.dot((r.frameB->inverseInertia * r.armB.cross(n)).cross(r.armB));
-  return k > 0 ? 1.0 / k : 0.0;
-}
-
-// How much a unit impulse along row j's normal at its point changes row i's normal
-// velocity (both rows between the same two bodies): the block's coupling matrix entry.
-double coupling(const Row& i, const Row& j) {
-  double k = (i.a->inverseMass + i.b->inverseMass) * i.normal.dot(j.normal);
-  if (!i.a->isStatic) k += i.armA.cross(i.normal).dot(i.frameA->inverseInertia * j.armA.cross(j.normal));
-  if (!i.b->isStatic) k += i.armB.cross(i.normal).dot(i.frameB->inverseInertia * j.armB.cross(j.normal));
-  return k;
-}
-
-// The second derivative of the row's gap (m/s^2) were both bodies to keep their velocities
-// (g = n . (x_a - x_b) for the material points x_a, x_b at the contact, with n turning
-// as the face it belongs to): the turn of the normal against the relative velocity, and
-// the centripetal accelerations of the two material points. A gap curving closed over
-// the step is what a velocity target of -gap / dt misses: a domino's edge sliding down
-// its neighbour's face, which turns towards it at 2 rad/s, closes 0.4 mm more in a step
-// of 1/60 s, four tolerances; each time the step backed up to it.
-double gapCurvature(const Row& r) {
-  auto centripetal = [](const RigidBody* body, const Eigen::Vector3d& arm) -> Eigen::Vector3d {
-    if (body->isStatic) return Eigen::Vector3d::Zero();
-    const Eigen::Vector3d& w = body->angularVelocity;
-    return w.cross(w.cross(arm));
-  };
-  const double withA = r.source->normalTurnWithA;
-  const Eigen::Vector3d normalTurn = (withA * r.a->angularVelocity + (1 - withA) * r.b->angularVelocity).cross(r.normal);
-  return r.normal.dot(centripetal(r.a, r.armA) - centripetal(r.b, r.armB)) + 2.0 * normalTurn.dot(relativeVelocity(r));
-}
-
-// J on a at the point and -J on b, as RigidBody::applyImpulse does it (the same
-// operations, so the same round-off) with the solve's frames.
-void applyPair(Row& r, const Eigen::Vector3d& J, Velocities v = kMomentum) {
-  if (!r.a->isStatic) {
-    r.a->*v.linear += r.a->inverseMass * J;
-    r.a->*v.angular += r.frameA->inverseInertia * r.armA.cross(J);
-  }
-  if (!r.b->isStatic) {
-    r.b->*v.linear += r.b->inverseMass * -J;
-    r.b->*v.angular += r.frameB->inverseInertia * r.armB.cross(-J);
-  }
-}
+using namespace solver;
 
 // The bodies the rows touch, each once (static ones excluded).
 std::vector<RigidBody*> movingBodies(const std::vector<Row>& rows) {
@@ -160,24 +76,24 @@ std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::
 // work for a frictionless row). Returns the change over the lighter body's mass (m/s).
 double solveFrictionRow(Row& r) {
   if (r.friction <= 0) return 0.0;
-  const Eigen::Vector3d v = relativeVelocity(r);
   const Eigen::Vector2d old = r.frictionImpulse;
-  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * r.tangent1.dot(v), r.tangentMass2 * r.tangent2.dot(v));
+  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * velocityAlong(r, r.tangentAxis1), r.tangentMass2 * velocityAlong(r, r.tangentAxis2));
   const double limit = r.friction * r.normalImpulse;
-  if (wanted.norm() > limit) wanted *= limit / wanted.norm();
+  if (const double size2 = wanted.squaredNorm(); size2 > limit * limit) wanted *= limit / std::sqrt(size2);
   r.frictionImpulse = wanted;
   const Eigen::Vector2d d = wanted - old;
-  applyPair(r, d.x() * r.tangent1 + d.y() * r.tangent2);
+  applyAlong(r, r.tangentAxis1, d.x());
+  applyAlong(r, r.tangentAxis2, d.y());
   return d.norm() * std::max(r.a->inverseMass, r.b->inverseMass);
 }
 
 // One row's normal impulse, as sequential impulses: the change that brings its normal
 // velocity to its target, clamped so that the accumulated impulse stays >= 0.
 double solveNormalRow(Row& r) {
-  const double vn = r.normal.dot(relativeVelocity(r));
+  const double vn = velocityAlong(r, r.normalAxis);
   const double old = r.normalImpulse;
   r.normalImpulse = std::max(0.0, old - r.normalMass * (vn - r.target));
-  applyPair(r, (r.normalImpulse - old) * r.normal);
+  applyAlong(r, r.normalAxis, r.normalImpulse - old);
   return std::abs(r.normalImpulse - old) * std::max(r.a->inverseMass, r.b->inverseMass);
 }
 
@@ -201,7 +117,7 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
     old(i) = ri.normalImpulse;
-    b(i) = ri.normal.dot(relativeVelocity(ri)) - ri.target;
+    b(i) = velocityAlong(ri, ri.normalAxis) - ri.target;
   }
   b -= A * old;
   const std::optional<BlockVector> x = lcp.solve(b);
@@ -213,7 +129,7 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
   for (int i = 0; i < n; ++i) {
     Row& r = rows[block[i]];
     r.normalImpulse = (*x)(i);
-    applyPair(r, (r.normalImpulse - old(i)) * r.normal);
+    applyAlong(r, r.normalAxis, r.normalImpulse - old(i));
     change = std::max(change, std::abs(r.normalImpulse - old(i)) * std::max(r.a->inverseMass, r.b->inverseMass));
   }
   return change;
@@ -251,7 +167,7 @@ void applyRestitution(std::vector<Row>& rows, double energyBefore) {
   for (const RigidBody* b : bodies) compressed.emplace_back(b->velocity, b->angularVelocity);
   const double e0 = kineticEnergy(bodies);
   for (Row& r : rows)
-    if (r.restitution > 0) applyPair(r, r.restitution * r.normalImpulse * r.normal);
+    if (r.restitution > 0) applyAlong(r, r.normalAxis, r.restitution * r.normalImpulse);
   const double e1 = kineticEnergy(bodies);
   for (size_t i = 0; i < bodies.size(); ++i)
     delta.emplace_back(bodies[i]->velocity - compressed[i].first, bodies[i]->angularVelocity - compressed[i].second);
@@ -285,10 +201,10 @@ void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt) {
     double largestChange = 0.0;
     for (size_t k = 0; k < rows.size(); ++k) {
       Row& r = rows[k];
-      const double vn = r.normal.dot(relativeVelocity(r, kPush));
+      const double vn = velocityAlong(r, r.normalAxis, kPush);
       const double old = impulse[k];
       impulse[k] = std::max(0.0, old - r.normalMass * (vn - target[k]));
-      applyPair(r, (impulse[k] - old) * r.normal, kPush);
+      applyAlong(r, r.normalAxis, impulse[k] - old, kPush);
       largestChange = std::max(largestChange, std::abs(impulse[k] - old) * std::max(r.a->inverseMass, r.b->inverseMass));
     }
     if (largestChange < kPushVelocityTolerance) break;
@@ -323,7 +239,12 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     r.normal = c.normal;
     r.friction = c.friction;
     r.separation = c.separation;
-    r.normalMass = effectiveMass(r, r.normal);
+    r.tangent1 = r.normal.unitOrthogonal();
+    r.tangent2 = r.normal.cross(r.tangent1);
+    r.normalAxis = axisOf(r, r.normal);
+    r.tangentAxis1 = axisOf(r, r.tangent1);
+    r.tangentAxis2 = axisOf(r, r.tangent2);
+    r.normalMass = effectiveMass(r, r.normalAxis);
     const double approach = r.normal.dot(relativeVelocity(r));
     if (approach < -kBounceThreshold) r.restitution = c.restitution;
     // A contact still apart may close its gap within the step (a speculative target),
@@ -332,11 +253,9 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     // (0.6% of the speed per bounce at dt 1/240, measured on bounce_e09).
     r.target = r.restitution > 0 ? 0.0 : -std::max(c.separation, 0.0) / dt;
     if (r.restitution == 0) r.target -= 0.5 * std::min(0.0, gapCurvature(r)) * dt;
-    r.tangent1 = r.normal.unitOrthogonal();
-    r.tangent2 = r.normal.cross(r.tangent1);
     if (r.friction > 0) {
-      r.tangentMass1 = effectiveMass(r, r.tangent1);
-      r.tangentMass2 = effectiveMass(r, r.tangent2);
+      r.tangentMass1 = effectiveMass(r, r.tangentAxis1);
+      r.tangentMass2 = effectiveMass(r, r.tangentAxis2);
     }
     rows.push_back(r);
   }
@@ -349,7 +268,9 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
       const double limit = r.friction * r.normalImpulse;
       if (r.frictionImpulse.norm() > limit) r.frictionImpulse *= limit / r.frictionImpulse.norm();
     }
-    applyPair(r, r.normalImpulse * r.normal + r.frictionImpulse.x() * r.tangent1 + r.frictionImpulse.y() * r.tangent2);
+    applyAlong(r, r.normalAxis, r.normalImpulse);
+    applyAlong(r, r.tangentAxis1, r.frictionImpulse.x());
+    applyAlong(r, r.tangentAxis2, r.frictionImpulse.y());
   }
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
   std::vector<SmallLcp> couplings;  // per block, its coupling matrix: constant through the sweeps

@@ -252,7 +252,9 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
         break;
       }
   }
-  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap).iterations;
+  const auto st = dynamics::solveContacts(bodies_, points, horizon, allowedOverlap);
+  report_.solverIterations += st.iterations;
+  if (getenv("SOLVESTAT")) fprintf(stderr, "SOLVE %zu %d %d %d %ld\n", points.size(), st.iterations, (int)st.converged, (int)remember, st.rowSolves);
   if (!remember) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;
