@@ -23,7 +23,7 @@ ERROR_FLOOR = 1e-12
 COLUMNS = ["scene", "engine", "solver", "parameter_name", "parameter", "dt", "cost_s_per_s", "metric", "error",
            "solver_warnings"]
 UNITS = {"first_contact_time": "s", "rest_height": "m", "bounce_apex": "m", "slide_distance": "m",
-         "stack_drift": "m", "max_penetration": "m"}
+         "stack_drift": "m", "max_penetration": "m", "displacement": "m", "energy_gain": "J"}
 COLOURS = {("polysim", "bisection"): "tab:blue", ("polysim", "regula-falsi"): "tab:green",
            ("ode", "quickstep"): "tab:red", ("ode", "worldstep"): "tab:orange"}
 MARKERS = "osD^v<>"

@@ -41,6 +41,12 @@ Figure measure(const std::string& metric, const SweepCase& c, const Scene& scene
     return {drift, 0.0};
   }
   if (metric == "max_penetration") return {r.maxPenetration, 0.0};
+  if (metric == "energy_gain") return {r.maxEnergyIncrease, 0.0};  // nothing adds energy to these scenes
+  if (metric == "displacement") {  // a pyramid that stands: every box where it started
+    double farthest = 0.0;
+    for (size_t i = 0; i < r.final.size(); ++i) farthest = std::max(farthest, (r.final[i].position - r.initial[i].position).norm());
+    return {farthest, 0.0};
+  }
   throw std::invalid_argument("unknown sweep metric \"" + metric + "\"");
 }
 
@@ -66,10 +72,16 @@ RunRecord runOnce(const Scene& scene, const SweepCase& c, const SweepSetting& s,
 }  // namespace
 
 std::vector<SweepCase> standardSweepCases(bool quick) {
-  return {{"drop_box", quick ? 2.0 : 3.0, {"first_contact_time", "rest_height", "max_penetration"}, "box", ""},
+  std::vector<SweepCase> cases = {{"drop_box", quick ? 2.0 : 3.0, {"first_contact_time", "rest_height", "max_penetration"}, "box", ""},
           {"bounce", 1.5, {"bounce_apex"}, "box", ""},
           {"ramp_slides", 1.0, {"slide_distance"}, "box", "ramp"},
-          {quick ? "stack_5" : "stack_10", quick ? 2.0 : 10.0, {"stack_drift", "max_penetration"}, "", ""}};
+          {quick ? "stack_5" : "stack_10", quick ? 2.0 : 10.0, {"stack_drift", "max_penetration"}, "", ""},
+          // Busy scenes (polysim make ..., see README): many contacts at once.
+          {quick ? "pyramid" : "pyramid_10", quick ? 1.0 : 5.0, {"displacement", "energy_gain"}, "", ""}};
+  if (quick) return cases;
+  cases.push_back({"pile_27", 4.0, {"energy_gain", "max_penetration"}, "", ""});
+  cases.push_back({"dominoes_10", 6.0, {"energy_gain", "max_penetration"}, "", ""});
+  return cases;
 }
 
 std::vector<SweepSetting> sweepSettings(bool quick) {

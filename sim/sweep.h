@@ -22,7 +22,9 @@ struct SweepSetting {
 
 /// A scene of the standard set and what it measures: first_contact_time (s), rest_height
 /// (m), bounce_apex (m), slide_distance (m), stack_drift (m: the largest horizontal
-/// displacement of any body, analytic 0), max_penetration (m, analytic 0).
+/// displacement of any body, analytic 0), max_penetration (m, analytic 0), displacement
+/// (m: the farthest any body ended from its start, analytic 0 for a pyramid that stands),
+/// energy_gain (J: the run's largest rise of energy above its start, analytic 0).
 struct SweepCase {
   std::string scene;  // file name in the scenes directory, without ".json"
   double duration;    // s
