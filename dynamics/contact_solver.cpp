@@ -109,10 +109,10 @@ BlockMatrix couplingMatrix(const std::vector<Row>& rows, const std::vector<int>&
   return A;
 }
 
-double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const SmallLcp& lcp) {
+double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const SmallLcp* lcp) {
   const int n = static_cast<int>(block.size());
   if (n == 1) return solveNormalRow(rows[block[0]]);
-  const BlockMatrix& A = lcp.matrix();
+  const BlockMatrix& A = lcp->matrix();
   BlockVector b(n), old(n);
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
@@ -120,7 +120,7 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
     b(i) = velocityAlong(ri, ri.normalAxis) - ri.target;
   }
   b -= A * old;
-  const std::optional<BlockVector> x = lcp.solve(b);
+  const std::optional<BlockVector> x = lcp->solve(b);
   double change = 0.0;
   if (!x) {
     for (int k : block) change = std::max(change, solveNormalRow(rows[k]));
@@ -138,7 +138,7 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
 // Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
 // kMaxSolverIterations are made: each block's friction rows, then its normal impulses.
 SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
-                      const std::vector<SmallLcp>& couplings, const std::vector<int>& group) {
+                      const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group) {
   SolveStats stats;
   while (stats.iterations < kMaxSolverIterations) {
     ++stats.iterations;
@@ -146,7 +146,7 @@ SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>
     for (int k : group) {
       stats.rowSolves += static_cast<long>(blocks[k].size());
       for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
-      largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplings[k]));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplingOf[k]));
     }
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;
@@ -273,13 +273,16 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     applyAlong(r, r.tangentAxis2, r.frictionImpulse.y());
   }
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
-  std::vector<SmallLcp> couplings;  // per block, its coupling matrix: constant through the sweeps
-  couplings.reserve(blocks.size());
-  for (const std::vector<int>& block : blocks) couplings.emplace_back(block.size() > 1 ? couplingMatrix(rows, block) : BlockMatrix());
+  // Each block of several rows, its coupling matrix: constant through the sweeps.
+  std::vector<SmallLcp> couplings;
+  couplings.reserve(blocks.size());  // never reallocated: couplingOf points into it
+  std::vector<const SmallLcp*> couplingOf(blocks.size(), nullptr);
+  for (size_t k = 0; k < blocks.size(); ++k)
+    if (blocks[k].size() > 1) couplingOf[k] = &couplings.emplace_back(couplingMatrix(rows, blocks[k]));
   SolveStats stats;
   stats.converged = true;
   for (const std::vector<int>& group : groupsOf(rows, blocks, static_cast<int>(bodies.size()))) {
-    const SolveStats swept = sweepGroup(rows, blocks, couplings, group);
+    const SolveStats swept = sweepGroup(rows, blocks, couplingOf, group);
     stats.iterations = std::max(stats.iterations, swept.iterations);
     stats.converged = stats.converged && swept.converged;
     stats.rowSolves += swept.rowSolves;

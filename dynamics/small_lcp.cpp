@@ -54,18 +54,20 @@ std::optional<BlockVector> SmallLcp::solve(const BlockVector& b) const {
     const Members in = membersOf(set, n);
     BlockVector x = BlockVector::Zero(n);
     if (in.count > 0) {
-      std::optional<BlockMatrix>& pinv = pseudoInverses_[set];
-      if (!pinv) {
+      using Stored = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockSize, kMaxBlockSize>>;
+      Stored pinv(pseudoInverses_[set].data(), in.count, in.count);
+      if (!(made_ & (1u << set))) {
         BlockMatrix Ass(in.count, in.count);
         for (int i = 0; i < in.count; ++i)
           for (int j = 0; j < in.count; ++j) Ass(i, j) = A_(in.index[i], in.index[j]);
         // The least-norm solution's operator, as CompleteOrthogonalDecomposition::solve
         // would apply it: rank found to the decomposition's own threshold.
-        pinv.emplace(Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse());
+        pinv = Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse();
+        made_ |= 1u << set;
       }
       BlockVector bs(in.count);
       for (int i = 0; i < in.count; ++i) bs(i) = b(in.index[i]);
-      const BlockVector xs = -(*pinv * bs);
+      const BlockVector xs = -(pinv * bs);
       for (int i = 0; i < in.count; ++i) x(in.index[i]) = xs(i);
     }
     const BlockVector w = A_ * x + b;

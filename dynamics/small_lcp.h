@@ -37,7 +37,11 @@ class SmallLcp {
  private:
   BlockMatrix A_;
   double largestCoefficient_;
-  mutable std::array<std::optional<BlockMatrix>, 1u << kMaxBlockSize> pseudoInverses_;  // by set, its rows and columns
+  // Each set's pseudo-inverse, column-major over the set's points, once made (bit `set`
+  // of made_). Raw storage, so that making a SmallLcp touches only A_ and made_: a pile's
+  // solve makes thousands, most of which try one set.
+  mutable unsigned made_ = 0;
+  mutable std::array<std::array<double, kMaxBlockSize * kMaxBlockSize>, 1u << kMaxBlockSize> pseudoInverses_;
 };
 
 /// SmallLcp(A).solve(b): one problem on its own.
