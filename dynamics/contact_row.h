@@ -33,7 +33,7 @@ struct Row {
   RigidBody* b;
   const BodyFrame* frameA;
   const BodyFrame* frameB;
-  Eigen::Vector3d point, normal, tangent1, tangent2;
+  Eigen::Vector3d normal, tangent1, tangent2;
   Eigen::Vector3d armA, armB;                                 // m, from each centre of mass to the point
   Axis normalAxis, tangentAxis1, tangentAxis2;
   double normalMass = 0, tangentMass1 = 0, tangentMass2 = 0;  // kg: 1 / (J M^-1 J^T)

@@ -235,7 +235,6 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     r.frameB = frame(c.b);
     r.armA = c.point - r.frameA->centerOfMass;
     r.armB = c.point - r.frameB->centerOfMass;
-    r.point = c.point;
     r.normal = c.normal;
     r.friction = c.friction;
     r.separation = c.separation;

@@ -252,9 +252,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
         break;
       }
   }
-  const auto st = dynamics::solveContacts(bodies_, points, horizon, allowedOverlap);
-  report_.solverIterations += st.iterations;
-  if (getenv("SOLVESTAT")) fprintf(stderr, "SOLVE %zu %d %d %d %ld\n", points.size(), st.iterations, (int)st.converged, (int)remember, st.rowSolves);
+  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap).iterations;
   if (!remember) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;
