@@ -182,6 +182,19 @@ Found regulaFalsi(Search& s, Bracket br) {
     return signedSeparation(s, br.hiPairs, reach);
   };
   Separation sHi = measureAt(br.hi, br.atHi), sLo = measureAt(br.lo, br.atLo);
+  // A pair touching at the start but still apart there (within the band) crosses zero
+  // inside the bracket: its touching time is a root like any other.
+  if (!br.fresh && sLo.value > target) br.fresh = true;
+  if (!br.fresh) {
+    // Touching exactly at a scanned time: that time is the root.
+    if (br.lo > 0.0 && sLo.value >= -target) return {br.lo, TocStop::Contact};
+    // Overlapping within the band at the start (a box rocking onto its next corner, one
+    // corner already in): the feature touching since then keeps the measure negative all
+    // along, so it has no sign change to chase, and taking "negative" for "past the root"
+    // would narrow the bracket onto its start and return the very state it began from.
+    // Only the test's verdict tells the two sides apart there, as in bisection.
+    return bisect(s, br);
+  }
   bool alone = separationDecidesAlone(s, br.hiPairs);
   // The last separations measured, newest last: the interpolation through them is the
   // next guess of an exact measure (see below).
@@ -192,9 +205,8 @@ Found regulaFalsi(Search& s, Bracket br) {
   // the target (its pairs touch, nothing interpenetrates).
   std::optional<double> fallback;
   for (int guess = 0; guess < kMaxTimeOfContactIterations; ++guess) {
-    // A fresh pair is chased to the exact touching time; otherwise the bracket only narrows.
-    const bool narrow = br.fresh ? br.hi - br.lo < kTimeTolerance : narrowEnough(br, s.db.tolerance);
-    if (narrow) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
+    // The pairs are chased to the exact touching time.
+    if (br.hi - br.lo < kTimeTolerance) return {fallback.value_or(br.lo), TocStop::TimeTolerance};
     // The secant through the bracket's ends (regula falsi). When it falls within this
     // fraction of the bracket from an end (regula falsi's one-sided creep), an exact
     // measure (convex pairs) is trusted and the guess only kept that far from the end;
@@ -208,7 +220,7 @@ Found regulaFalsi(Search& s, Bracket br) {
     const double interpolated = interpolatedRoot(recent, measured);
     const bool exact = sLo.byAxes && sHi.byAxes;
     double t = std::clamp(secant, br.lo + margin, br.hi - margin);
-    if (!br.fresh || sLo.onlyBound || sHi.onlyBound || !std::isfinite(secant) || (!exact && t != secant))
+    if (sLo.onlyBound || sHi.onlyBound || !std::isfinite(secant) || (!exact && t != secant))
       t = 0.5 * (br.lo + br.hi);
     else if (exact && interpolated > br.lo + margin && interpolated < br.hi - margin)
       t = interpolated;
@@ -231,7 +243,7 @@ Found regulaFalsi(Search& s, Bracket br) {
     Separation sT = signedSeparation(s, br.hiPairs, reach);
     if (measured == 3) recent[0] = recent[1], recent[1] = recent[2], --measured;
     recent[measured++] = {t, sT.value};
-    if (br.fresh && std::abs(sT.value) <= target) {
+    if (std::abs(sT.value) <= target) {
       if (!r && test()) sT = signedSeparation(s, br.hiPairs, reach);
       if (std::abs(sT.value) <= target && allInContact(*r, br.hiPairs)) {
         if (withContacts) return {t, TocStop::Contact, std::move(r)};
@@ -243,7 +255,7 @@ Found regulaFalsi(Search& s, Bracket br) {
     // new upper end. A tested state stays acceptable as a fallback only while not
     // interpenetrating.
     if (sT.value < 0 || interpenetrating) {
-      if (br.fresh && r && !interpenetrating && allInContact(*r, br.hiPairs)) fallback = t;
+      if (r && !interpenetrating && allInContact(*r, br.hiPairs)) fallback = t;
       br.hi = t;
       sHi = sT;
       if (kept == -1) sLo = {0.5 * sLo.value, false, sLo.byAxes};  // Illinois: a weight, no longer a bound

@@ -186,14 +186,14 @@ TEST_P(TimeOfContact, TouchingObjectsMovingApart) {
 }
 
 // A pair touching at the start and pressing on (a box settling into the band) shows
-// "contact" all the way to the interpenetration, so there is no moment of just contact
-// to find: the contract is that the bracket is narrowed until nothing moves more than
-// eps inside it, and its start returned. The bracket's end is the first interpenetrating
-// time t* = (gap + eps) / v for bisection, and the root of the signed separation, the
-// touching time gap / v, for regula falsi (it brackets where the measure crosses zero).
-// So the returned time lies before t*, and before that end by at most eps over the
-// motion bound v. Many speeds and starting gaps, so that a bracket allowed to be twice as
-// wide shows.
+// "contact" all the way to the interpenetration. Bisection has no moment of just contact
+// to find: the contract is that the bracket is narrowed until nothing moves more than eps
+// inside it, and its start returned; the bracket's end is the first interpenetrating time
+// t* = (gap + eps) / v, so the returned time lies before t* and before it by at most eps
+// over the motion bound v. Regula falsi chases the zero of the signed separation, the
+// touching time gap / v, when the gap is positive at the start; with no gap it has no
+// zero to chase and narrows the bracket as bisection does. Many speeds and starting gaps,
+// so that a bracket allowed to be twice as wide shows.
 TEST_P(TimeOfContact, TouchingPairPressingOnIsBracketedToTheTolerance) {
   int cases = 0;
   for (double gap : {0.0, 0.3 * kEps, 0.9 * kEps})
@@ -204,14 +204,65 @@ TEST_P(TimeOfContact, TouchingPairPressingOnIsBracketedToTheTolerance) {
       w.addMoving(kCube, pose(V3(0, 0, 0.5 + gap)), V3(0, 0, -speed));
       const TocResult r = w.detect(GetParam());
       const double firstInterpenetrating = (gap + kEps) / speed;
-      const double bracketEnd = GetParam() == TocMethod::Bisection ? firstInterpenetrating : gap / speed;
       ASSERT_EQ(r.status, Status::Contact);
-      EXPECT_EQ(r.stoppedBy, TocStop::TimeTolerance);
-      EXPECT_LE(r.time, firstInterpenetrating);
-      EXPECT_LE(bracketEnd - r.time, kEps / speed * (1 + 1e-9));
+      if (GetParam() == TocMethod::RegulaFalsi && gap > 0.0) {
+        EXPECT_EQ(r.stoppedBy, TocStop::Contact);
+        EXPECT_NEAR(r.time, gap / speed, timeTolerance(GetParam(), speed));
+      } else {
+        EXPECT_EQ(r.stoppedBy, TocStop::TimeTolerance);
+        EXPECT_LE(r.time, firstInterpenetrating);
+        EXPECT_LE(firstInterpenetrating - r.time, kEps / speed * (1 + 1e-9));
+      }
       ++cases;
     }
   EXPECT_GT(cases, 100);
+}
+
+// A box resting on one bottom edge, inside the band, turns about that edge until its
+// bottom face lies flat and then goes through the floor (1 cm down at its far edge). The
+// edge touching all along keeps the pair "in contact" and its signed separation negative,
+// so neither method has a zero to chase: both must follow the face down to the first
+// interpenetrating state, not return the state they began from (regula falsi once did,
+// and a pile's rocking box then stalled its island's clock for good). Several starting
+// depths of the resting edge, on both sides of zero.
+TEST_P(TimeOfContact, BoxRockingOntoItsFaceIsFollowedToTheFaceNotLeftAtItsStart) {
+  struct Pivoting {  // turns the box about the y axis through `pivot`, by `turn` rad over [0, 1]
+    Eigen::Isometry3d start;
+    V3 pivot;
+    double turn;
+  };
+  const auto pivotPose = [](double t, const void* info, Eigen::Isometry3d& X) {
+    const Pivoting& m = *static_cast<const Pivoting*>(info);
+    X = Eigen::Translation3d(m.pivot) * Eigen::AngleAxisd(m.turn * t, V3::UnitY()) * Eigen::Translation3d(-m.pivot) * m.start;
+  };
+  const double tilt = 0.01, turn = 0.02;  // far edge from sin(0.01) up to sin(0.01) down
+  for (double resting : {-0.8 * kEps, -0.1 * kEps, 0.0, 0.5 * kEps}) {
+    SCOPED_TRACE("resting edge at " + std::to_string(resting / kEps) + " eps");
+    World w;
+    w.addStatic(kSlab, kSlabPose);
+    // The unit cube tilted about y: its edge at local x = -0.5, z = -0.5 lowest, at `resting`.
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(-tilt, V3::UnitY()).toRotationMatrix();
+    const V3 lowEdge = R * V3(-0.5, 0, -0.5);
+    Pivoting motion{pose(V3(0, 0, resting) - lowEdge, R), V3(0, 0, resting), turn};
+    const int box = w.addStatic(kCube, motion.start);  // made moving below, with its own path
+    ObjNode& node = w.db.objects[box];
+    node.isStatic = false;
+    node.ctrans = pivotPose;
+    node.info = &motion;
+    node.motionBound = std::abs(turn) * std::sqrt(3.0);  // farthest corner from the edge: sqrt 3
+    const TocResult r = w.detect(GetParam());
+    ASSERT_EQ(r.status, Status::Contact);
+    // The far edge (1 from the pivot along the face) at time t is at resting + sin(tilt - turn t).
+    const auto timeAtFarEdge = [&](double height) { return (tilt - std::asin(height - resting)) / turn; };
+    EXPECT_GE(r.time, timeAtFarEdge(kEps)) << "returned before the far edge reached the band";
+    EXPECT_LE(r.time, timeAtFarEdge(-kEps)) << "returned past the first interpenetration";
+    EXPECT_NE(test4Intersection(w.db).status, Status::Interpenetrating);
+    // The far edge is among the contacts: the face lies within the band.
+    bool farEdge = false;
+    for (const Contact& c : r.pairs.at(0).contacts)
+      for (const V3& x : c.points) farEdge = farEdge || (w.db.objects[box].X_WO.inverse() * x).x() > 0.49;
+    EXPECT_TRUE(farEdge);
+  }
 }
 
 TEST_P(TimeOfContact, InterpenetrationAtTheStartIsAnErrorNamingThePair) {
