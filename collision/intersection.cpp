@@ -5,6 +5,7 @@
 
 #include "collision/contact_reduction.h"
 #include "collision/containment.h"
+#include "collision/convex_separation.h"
 #include "collision/separating_plane.h"
 #include "collision/tolerances.h"
 
@@ -20,6 +21,21 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   const double eps = db.tolerance;
   const std::optional<Eigen::AlignedBox3d> region = overlapRegion(A, B, eps);
   if (!region || separatedAlongCentreLine(A, B, eps)) return result;
+  // Convex objects interpenetrate when their penetration depth (the least translation
+  // that parts them, by the separating axis test) exceeds eps. That depth is what the
+  // contacts' gaps measure: along a face's normal for a vertex, along the common normal
+  // for two crossing edges. The polygons' own measure reads an edge crossing a tilted
+  // face deeper than its gap (along the face's normal, over the face grown by eps), and
+  // a state whose contacts the solver holds within the band could be judged
+  // interpenetrating at once; a step would then never leave it.
+  const std::optional<double> separation = convexSeparation(A, B);
+  if (separation && *separation > eps) return result;  // a lower bound on their distance
+  if (separation && *separation < -eps) {
+    result.status = Status::Interpenetrating;
+    result.depth = -*separation;
+    return result;
+  }
+  const DepthVerdict verdict = separation ? DepthVerdict::DecidedByCaller : DepthVerdict::Judged;
 
   if (ws.faces.size() < db.objects.size()) ws.faces.resize(db.objects.size());
   WorldFaces& facesA = ws.faces[a];
@@ -30,7 +46,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   bool touching = false;
   auto judge = [&](int fa, int fb, const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr) {
     const PolygonPairOutcome o = testPolygonPair(facesA.view(fa), facesB.view(fb), eps,
-                                                 options.contacts ? &ws.raw : nullptr, ws.scratch, cover, patch);
+                                                 options.contacts ? &ws.raw : nullptr, ws.scratch, cover, patch, verdict);
     if (o.status == Status::Interpenetrating) {
       result.status = Status::Interpenetrating;
       result.depth = std::max(result.depth, o.depth);
@@ -81,7 +97,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
       if (!facing(fp)) judge(fp.a, fp.b, &ws.cover);
   }
   if (result.status == Status::Interpenetrating) return result;
-  if (!touching) {  // no polygons meet: one object may still lie wholly inside the other
+  if (!touching && !separation) {  // no polygons meet: one object may still lie wholly inside the other
     std::optional<double> depth = containmentDepth(A, B);
     if (!depth) depth = containmentDepth(B, A);
     if (depth) {

@@ -311,17 +311,19 @@ double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, 
 
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& s, const AreaCover* cover,
-                                   AreaOnPatch* patch) {
+                                   AreaOnPatch* patch, DepthVerdict verdict) {
   signedDistances(p, q.plane, s.dP);
   signedDistances(q, p.plane, s.dQ);
   const LevelRange levelP(s.dP), levelQ(s.dQ);
   if (levelP.outOfReach(eps) || levelQ.outOfReach(eps)) return {};
 
-  double depth = 0.0;
-  // Only whether the depth exceeds eps matters here.
-  if (levelP.min < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
-  if (levelQ.min < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
-  if (depth > eps) return {Status::Interpenetrating, depth};
+  if (verdict == DepthVerdict::Judged) {
+    double depth = 0.0;
+    // Only whether the depth exceeds eps matters here.
+    if (levelP.min < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
+    if (levelQ.min < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
+    if (depth > eps) return {Status::Interpenetrating, depth};
+  }
   if (cover && cover->covers(p, s.dP.data(), q, s.dQ.data(), eps)) return {Status::Contact, 0.0};
 
   std::vector<Contact>& out = contacts ? *contacts : s.discard;

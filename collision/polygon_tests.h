@@ -45,6 +45,10 @@ struct PolygonPairOutcome {
 class AreaCover;
 class AreaOnPatch;
 
+/// Whether testPolygonPair judges interpenetration itself, or the caller already has
+/// (convex objects, by their penetration depth; see testObjectPair) and wants contacts only.
+enum class DepthVerdict { Judged, DecidedByCaller };
+
 /// Tests polygon p (of object A) against q (of object B) with contact tolerance eps (m).
 ///
 /// Interpenetrating: p reaches more than eps behind q, measured as the smaller of (1) how
@@ -58,10 +62,13 @@ class AreaOnPatch;
 /// and the pair counts as in contact. When `patch` is given (begun on p, and `contacts`
 /// non-null), a facing pair that is not interpenetrating goes to the patch instead: its
 /// area joins the patch's pieces, or it is left unsettled (area_on_patch.h) and counts
-/// as separate until the caller settles it.
+/// as separate until the caller settles it. With DepthVerdict::DecidedByCaller the pair
+/// is never Interpenetrating: the features within eps are its contacts however deep the
+/// polygons' own measure finds them.
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
                                    std::vector<Contact>* contacts, PolygonScratch& scratch,
-                                   const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr);
+                                   const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr,
+                                   DepthVerdict verdict = DepthVerdict::Judged);
 
 /// How far (m) p goes inside q's object or q inside p's, measured as in testPolygonPair
 /// (0 when neither goes behind the other); not compared with any tolerance.

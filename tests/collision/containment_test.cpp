@@ -53,11 +53,13 @@ void expectEverywhere(const std::shared_ptr<const PolygonMesh>& inner, const Eig
     }
 }
 
-TEST(Containment, ASmallBoxInsideABigOneInterpenetratesByItsDistanceToTheSurface) {
-  // A 0.2 m box centred in a 2 m box: every corner is 0.9 m from the nearest face.
+// Two convex objects are judged by their penetration depth (the separating axis test),
+// which needs no polygons to meet: the least translation that parts them.
+TEST(Containment, ASmallBoxInsideABigOneInterpenetratesByTheTranslationThatPartsThem) {
+  // A 0.2 m box centred in a 2 m box: its far side is 1.1 m from the nearest face.
   expectEverywhere(mesh(makeBox(V3(0.2, 0.2, 0.2))), at(V3(0, 0, 0)), mesh(makeBox(V3(2, 2, 2))), at(V3(0, 0, 0)),
-                   Status::Interpenetrating, 0.9);
-  // Off centre along x: the corners at x = 0.5 are the deepest, 0.5 m from x = 1.
+                   Status::Interpenetrating, 1.1);
+  // Off centre along x: its side at x = 0.5 must pass x = 1.
   expectEverywhere(mesh(makeBox(V3(0.2, 0.2, 0.2))), at(V3(0.6, 0, 0)), mesh(makeBox(V3(2, 2, 2))), at(V3(0, 0, 0)),
                    Status::Interpenetrating, 0.5);
 }
