@@ -181,6 +181,42 @@ TEST(ToleranceBoundary, EdgeSunkIntoAFaceIsContactUpToEpsilonOnConvexFloorsNotYe
     }
 }
 
+// A box tilted across another box's top edge, that edge sunk by d into its bottom face
+// (a box tipping over the edge of the one below it, as in any pile). The contact is a
+// line with gap -d along the tilted face's normal, and the pair interpenetrates only once
+// d passes eps. The polygons' own measure read it deeper (along the lower box's top
+// normal, over its face grown by eps: eps tan(tilt) more), so a state the solver held
+// within the band was judged interpenetrating, and a pile's island stalled on it.
+TEST(ToleranceBoundary, BoxTiltedAcrossAnotherBoxsEdgeInterpenetratesOnlyOnceItsGapPassesEpsilon) {
+  const auto cube = std::make_shared<PolygonMesh>(makeBox(V3(1, 1, 1)));
+  for (double tilt : {0.05, 0.17, 0.5})
+    for (double sunk : {0.0, 0.5 * kEps, 0.9 * kEps, kEps, kEps + 64 * kJustOver}) {
+      SCOPED_TRACE("tilt " + std::to_string(tilt) + " rad, sunk " + std::to_string(sunk / kEps) + " eps");
+      // The upper box's bottom face rises over the lower box (towards -x) and passes its
+      // edge at x = 0.5, z = 0.5 a fifth of the face beyond it.
+      const Eigen::Matrix3d R = Eigen::AngleAxisd(tilt, V3::UnitY()).toRotationMatrix();
+      const V3 bottomNormal = R * V3(0, 0, -1);  // out of the upper box
+      const V3 faceCentre = V3(0.5, 0, 0.5) + R * V3(-0.3, 0, 0) + sunk * bottomNormal;
+      ObjectDatabase db;
+      db.tolerance = kEps;
+      db.add("upper", cube, pose(faceCentre - 0.5 * bottomNormal, R), false);
+      db.add("lower", cube, pose(V3::Zero()), false);
+      const IntersectionResult r = test4Intersection(db);
+      ASSERT_EQ(r.pairs.size(), 1u);
+      if (sunk > kEps) {
+        EXPECT_EQ(toString(r.status), "interpenetrating");
+        EXPECT_NEAR(r.pairs[0].depth, sunk, 1e-12);
+        continue;
+      }
+      EXPECT_EQ(toString(r.status), "contact");
+      ASSERT_EQ(r.pairs[0].contacts.size(), 1u);
+      const Contact& c = r.pairs[0].contacts[0];
+      EXPECT_EQ(toString(c.type), "line");
+      EXPECT_NEAR(c.separation, -sunk, 1e-12);
+      EXPECT_NEAR(std::abs(c.normal.dot(bottomNormal)), 1.0, 1e-12);
+    }
+}
+
 // A floor of two squares, the right one a quarter tolerance lower: they are not one flat
 // patch, so the box's face is judged against the second square on its own (not as part
 // of the first one's patch). With the box's bottom 3/4 eps above the left square it is
