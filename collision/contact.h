@@ -52,7 +52,8 @@ struct PairResult {
   /// geometry is not meaningful then) or is separate.
   std::vector<Contact> contacts;
   /// For an interpenetrating pair, the deepest interpenetration found (m; a lower bound
-  /// when the test was asked for no contacts); 0 otherwise.
+  /// when the test was asked for no contacts); for two convex objects, their penetration
+  /// depth (the least translation that parts them). 0 otherwise.
   double depth = 0.0;
 };
 

@@ -48,7 +48,8 @@ struct IntersectionWorkspace {
 
 /// Tests every pair of objects of the database at their current transforms (static pairs
 /// excepted; pairs whose containers are apart are skipped by a sweep and prune) with the database's tolerance: separate, contact (within tolerance; touching
-/// counts) or interpenetrating (a feature more than the tolerance inside the other).
+/// counts) or interpenetrating (a feature more than the tolerance inside the other; for
+/// two convex objects with separating axes, their penetration depth more than it).
 IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& workspace,
                                      const IntersectionOptions& options = {});
 IntersectionResult test4Intersection(const ObjectDatabase& db, const IntersectionOptions& options = {});
