@@ -158,4 +158,16 @@ Polygon2 convexHull(std::vector<Eigen::Vector2d> pts) {
   return hull;
 }
 
+void clipBelow(const std::vector<Eigen::Vector3d>& in, const Eigen::Vector3d& normal, double offset,
+               std::vector<Eigen::Vector3d>& out) {
+  out.clear();
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Eigen::Vector3d& x = in[i];
+    const Eigen::Vector3d& y = in[(i + 1) % in.size()];
+    const double sx = normal.dot(x) - offset, sy = normal.dot(y) - offset;
+    if (sx <= 0) out.push_back(x);
+    if ((sx <= 0) != (sy <= 0)) out.push_back(x + (sx / (sx - sy)) * (y - x));
+  }
+}
+
 }  // namespace polysim::collision

@@ -36,6 +36,11 @@ void clipConvex(const Polygon2& subject, const Polygon2& clipper, Polygon2& out,
 /// end inside is left exactly as it was.
 bool clipSegment(const Polygon2& convex, double grow, Eigen::Vector2d& a, Eigen::Vector2d& b);
 
+/// The part of polygon `in` (3D, planar) where normal . x <= offset, into `out` (one
+/// Sutherland-Hodgman step in space). Empty when nothing is left.
+void clipBelow(const std::vector<Eigen::Vector3d>& in, const Eigen::Vector3d& normal, double offset,
+               std::vector<Eigen::Vector3d>& out);
+
 /// Distance from p to a convex counter-clockwise polygon: 0 inside, else to the boundary.
 double distanceToConvex(const Polygon2& convex, const Eigen::Vector2d& p);
 

@@ -1,5 +1,6 @@
 #include "collision/contact_reduction.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -126,6 +127,12 @@ bool joinCollinear(Contact& a, const Contact& b, double eps) {
   return true;
 }
 
+// Whether A and B, at the features of piece c, can be touched along n (from B towards A).
+std::pair<bool, bool> admits(const PairGeometry& g, const Contact& c, const Eigen::Vector3d& n, double eps) {
+  const Eigen::Vector3d outwardA = -(g.R_WA.transpose() * n), outwardB = g.R_WB.transpose() * n;
+  return {inNormalCone(*g.meshA, c.featureA, outwardA, eps), inNormalCone(*g.meshB, c.featureB, outwardB, eps)};
+}
+
 // The normal of pieces found to be one contact (see reduceContacts); false when no piece
 // admits any of the proposed normals at both its features: a contact at the rim of a face
 // from the side it cannot be touched from, which a true contact elsewhere covers.
@@ -143,12 +150,10 @@ bool jointNormal(const std::vector<const Contact*>& pieces, const PairGeometry* 
   int bestVotes = -1;
   for (const Contact* candidate : pieces) {
     const Eigen::Vector3d& n = candidate->normal;  // from B towards A: A is touched from -n, B from n
-    const Eigen::Vector3d outwardA = -(geometry->R_WA.transpose() * n), outwardB = geometry->R_WB.transpose() * n;
     int votes = 0;
     bool wholly = false;  // some piece admits n at both its features
     for (const Contact* c : pieces) {
-      const bool a = inNormalCone(*geometry->meshA, c->featureA, outwardA, eps);
-      const bool b = inNormalCone(*geometry->meshB, c->featureB, outwardB, eps);
+      const auto [a, b] = admits(*geometry, *c, n, eps);
       votes += a + b;
       wholly = wholly || (a && b);
     }
@@ -188,6 +193,26 @@ void takeGapsAlongNormal(Contact& c, const std::vector<const Contact*>& pieces, 
   if (deepest) c.featureA = deepest->featureA, c.featureB = deepest->featureB;
 }
 
+// For a pair judged polygon pair by polygon pair (PairGeometry::sunkHeldAlongEachFace):
+// the pieces of one point sunk behind faces other than the joint contact's, each as a
+// contact of its own along its face's normal, at most one per normal.
+void addSunkAlongOtherNormals(const Contact& joint, const std::vector<const Contact*>& pieces, const PairGeometry& g,
+                              double eps, std::vector<Contact>& kept) {
+  std::vector<Eigen::Vector3d> taken{joint.normal};
+  for (const Contact* piece : pieces) {
+    if (piece->separation >= 0.0) continue;
+    const Eigen::Vector3d& n = piece->normal;
+    auto same = [&n](const Eigen::Vector3d& m) { return (m - n).norm() <= kNormalConeSlack; };
+    if (std::any_of(taken.begin(), taken.end(), same)) continue;
+    const auto [a, b] = admits(g, *piece, n, eps);
+    if (!a || !b) continue;
+    Contact c = *piece;
+    takeGapsAlongNormal(c, pieces, eps);
+    taken.push_back(n);
+    kept.push_back(std::move(c));
+  }
+}
+
 // The joined contacts with their joint normals and gaps, less those no piece admits.
 std::vector<Contact> withJointNormals(std::vector<Contact> joined, const std::vector<std::vector<const Contact*>>& pieces,
                                       const PairGeometry* geometry, double eps) {
@@ -195,7 +220,8 @@ std::vector<Contact> withJointNormals(std::vector<Contact> joined, const std::ve
   for (size_t k = 0; k < joined.size(); ++k) {
     if (!jointNormal(pieces[k], geometry, eps, joined[k].normal)) continue;
     takeGapsAlongNormal(joined[k], pieces[k], eps);
-    kept.push_back(std::move(joined[k]));
+    kept.push_back(joined[k]);
+    if (geometry && geometry->sunkHeldAlongEachFace) addSunkAlongOtherNormals(joined[k], pieces[k], *geometry, eps, kept);
   }
   return kept;
 }

@@ -19,6 +19,14 @@ struct PairGeometry {
   const PolygonMesh* meshA = nullptr;
   const PolygonMesh* meshB = nullptr;
   Eigen::Matrix3d R_WA = Eigen::Matrix3d::Identity(), R_WB = Eigen::Matrix3d::Identity();
+  /// The pair's verdict is the polygons' own measure, face pair by face pair (objects
+  /// that are not convex; intersection.cpp). A point sunk behind two faces of the other
+  /// object (a cup's inner rim corner inside the corner of another cup's walls) then
+  /// keeps a contact along each face's normal, not one along the normal most pieces
+  /// admit: that measure reads the point's edges behind each face, and a contact along
+  /// one normal alone would let them sink along the other, to be found interpenetrating
+  /// at the very start of the next step.
+  bool sunkHeldAlongEachFace = false;
 };
 
 /// The contacts of one object pair with every contact reported once. `eps` (m) is the

@@ -109,7 +109,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   if (touching) {
     result.status = Status::Contact;
     if (options.contacts) {
-      const PairGeometry geometry{A.mesh.get(), B.mesh.get(), A.X_WO.linear(), B.X_WO.linear()};
+      const PairGeometry geometry{A.mesh.get(), B.mesh.get(), A.X_WO.linear(), B.X_WO.linear(), !separation};
       result.contacts = reduceContacts(ws.raw, eps, &geometry);
     }
   }

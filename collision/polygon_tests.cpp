@@ -6,6 +6,8 @@
 
 #include "collision/area_cover.h"
 #include "collision/area_on_patch.h"
+#include "collision/clip.h"
+#include "collision/crease_depth.h"
 #include "collision/segment_distance.h"
 #include "collision/tolerances.h"
 
@@ -38,19 +40,6 @@ bool cutAtLevel(const PolygonView& p, const double* d, double h, Eigen::Vector3d
   return found > 0;
 }
 
-// Keeps the part of polygon `in` with normal . x <= offset (3D Sutherland-Hodgman step).
-void clipBelow(const std::vector<Eigen::Vector3d>& in, const Eigen::Vector3d& normal, double offset,
-               std::vector<Eigen::Vector3d>& out) {
-  out.clear();
-  for (size_t i = 0; i < in.size(); ++i) {
-    const Eigen::Vector3d& x = in[i];
-    const Eigen::Vector3d& y = in[(i + 1) % in.size()];
-    const double sx = normal.dot(x) - offset, sy = normal.dot(y) - offset;
-    if (sx <= 0) out.push_back(x);
-    if ((sx <= 0) != (sy <= 0)) out.push_back(x + (sx / (sx - sy)) * (y - x));
-  }
-}
-
 // The largest over t in [0,1] of min_k f_k(t), f_k(t) = a_k + b_k t: the deepest point of
 // a segment inside a convex region bounded by lines. min of lines is concave, so the
 // maximum sits at an end or where two lines cross.
@@ -72,12 +61,16 @@ double maxOfMinOfLines(const std::vector<std::pair<double, double>>& lines) {
   return best;
 }
 
-// How far (m) polygon p goes inside q's object, judged from q alone: the smaller of the
-// depth of p behind q's plane within q's prism (grown by eps) and the depth of p's cut
-// through q's plane inside q, measured from q's edges that are not flat. A caller that
-// only asks whether the depth exceeds `enough` gets the cut's depth alone once that is
-// at most `enough` (the smaller of the two can only be less), or a bound on it.
-double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, double eps, PolygonScratch& s,
+// How far (m) polygon p goes inside q's object, judged from q alone: the smaller of (1)
+// the depth of p behind q's plane over q, in the wedge of q's convex creases
+// (crease_depth.h), and (2) the depth of p's cut through q's plane inside q, from q's
+// edges that are not flat. Both are taken over q itself, not over q grown by eps: past a
+// flat edge the coplanar neighbour's own pair measures what lies there, and a band past
+// a crease would be measured without that crease's other face (a cup lying on its side
+// read the floor beyond the corner of its rim as nearly eps deep, and stalled). A caller
+// that only asks whether the depth exceeds `enough` gets the cut's depth alone once that
+// is at most `enough` (the smaller of the two can only be less), or a bound on it.
+double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, PolygonScratch& s,
                  double enough = -1.0) {
   const double maxP = *std::max_element(dP, dP + p.size);
   Eigen::Vector3d c0, c1;
@@ -100,7 +93,7 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
   s.q2.resize(q.size);
   for (int k = 0; k < q.size; ++k) s.q2[k] = frame.to2d(q.vertices[k]);
   Eigen::Vector2d a = frame.to2d(c0), b = frame.to2d(c1);
-  if (!clipSegment(s.q2, eps, a, b)) return 0.0;
+  if (!clipSegment(s.q2, 0.0, a, b)) return 0.0;
 
   std::vector<std::pair<double, double>>& lines = s.lines;  // inside distance along the cut, per sharp edge
   lines.clear();
@@ -120,11 +113,9 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, d
   for (int k = 0; k < q.size && !s.clipB.empty(); ++k) {
     const Eigen::Vector3d& u = q.vertices[k];
     s.clipA.swap(s.clipB);
-    clipBelow(s.clipA, q.sideNormal[k], q.sideNormal[k].dot(u) + eps, s.clipB);
+    clipBelow(s.clipA, q.sideNormal[k], q.sideNormal[k].dot(u), s.clipB);
   }
-  double behind = 0.0;
-  for (const Eigen::Vector3d& x : s.clipB) behind = std::max(behind, -q.plane.signedDistance(x));
-  return std::min(cutDepth, behind);
+  return std::min(cutDepth, deepestInWedge(q, s.clipB, enough, s));
 }
 
 // A contact without points yet (Contact::addPoint adds them with their gaps).
@@ -304,9 +295,9 @@ double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, 
   const LevelRange levelP(s.dP), levelQ(s.dQ);
   if (levelP.outOfReach(eps) || levelQ.outOfReach(eps)) return 0.0;
   double depth = 0.0;
-  if (levelP.min < 0) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s));
-  if (levelQ.min < 0) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s));
-  return depth;
+  if (levelP.min < 0) depth = std::max(depth, depthInto(p, s.dP.data(), q, s));
+  if (levelQ.min < 0) depth = std::max(depth, depthInto(q, s.dQ.data(), p, s));
+  return std::max(depth, deepestCrossing(p, q, eps));
 }
 
 PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, double eps,
@@ -320,8 +311,14 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   if (verdict == DepthVerdict::Judged) {
     double depth = 0.0;
     // Only whether the depth exceeds eps matters here.
-    if (levelP.min < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, eps, s, eps));
-    if (levelQ.min < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, eps, s, eps));
+    if (levelP.min < -eps) depth = std::max(depth, depthInto(p, s.dP.data(), q, s, eps));
+    if (levelQ.min < -eps) depth = std::max(depth, depthInto(q, s.dQ.data(), p, s, eps));
+    // Two creases crossing deeper than eps interpenetrate by the gap their edge-edge
+    // contact would measure. The measure above reads less where one edge runs along a
+    // face of the other's wedge (a cup's bottom edge across another cup's inner rim
+    // edge); unjudged, such a crossing would be no contact (its gap is past -eps) and
+    // nothing would hold it.
+    if (depth <= eps) depth = std::max(depth, deepestCrossing(p, q, eps));
     if (depth > eps) return {Status::Interpenetrating, depth};
   }
   if (cover && cover->covers(p, s.dP.data(), q, s.dQ.data(), eps)) return {Status::Contact, 0.0};

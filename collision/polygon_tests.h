@@ -27,6 +27,8 @@ struct PolygonView {
 struct PolygonScratch {
   std::vector<double> dP, dQ;
   std::vector<Eigen::Vector3d> clipA, clipB;
+  std::vector<Eigen::Vector3d> deepA, deepB;                    // a polygon cut down to its deepest part
+  std::vector<std::pair<Eigen::Vector3d, double>> wedge;       // planes bounding an object near a face
   Polygon2 p2, q2, overlap, clipWork;
   std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge
   std::vector<Contact> discard;                  // contacts found when none are wanted
@@ -52,8 +54,10 @@ enum class DepthVerdict { Judged, DecidedByCaller };
 /// Tests polygon p (of object A) against q (of object B) with contact tolerance eps (m).
 ///
 /// Interpenetrating: p reaches more than eps behind q, measured as the smaller of (1) how
-/// far p goes behind q's plane inside q's prism and (2) how far p's cut through q's plane
-/// lies inside q, from q's boundary edges that are not flat (and the same for q into p).
+/// far p goes behind q's plane inside q's prism, within the wedge of q's convex creases
+/// (crease_depth.h), and (2) how far p's cut through q's plane lies inside q, from q's
+/// boundary edges that are not flat (and the same for q into p); or a convex crease of p
+/// crosses one of q more than eps deep along their common normal.
 /// Contact: not interpenetrating, and some feature pair is within eps. Touching counts
 /// as contact. When `contacts` is non-null and the pair is in contact, its contacts
 /// (area, lines, points; normal from B towards A) are appended, possibly with

@@ -81,6 +81,20 @@ inline constexpr double kFacesPerVoxel = 32.0;
 /// and 4; curved shapes go over and are measured polygon by polygon instead.
 inline constexpr int kMaxSeparatingDirections = 16;
 
+/// How finely (m) the depth of a polygon inside the wedge of two faces at a convex
+/// crease is bisected (polygon_tests.cpp): five orders below the smallest contact
+/// tolerance scenes use (1e-5 m), so that a verdict at eps and regula falsi's root in
+/// the depth are both far finer than the band; about 20 halvings of a 0.1 mm range.
+inline constexpr double kDepthResolution = 1e-12;
+
+/// How deep (in contact tolerances) two crossing creases of objects that are not convex
+/// are measured (polygon_tests.cpp): a crossing beyond eps is interpenetration, and one
+/// this deep is always seen as such. Far deeper, the closest points of two creases may
+/// lie on parts of the objects far apart (a cup's rim edge and the bottom edge of the cup
+/// under it), whose "crossing" says nothing; a real overlap that deep is seen by the
+/// polygons' own measure.
+inline constexpr double kCrossingReach = 16.0;
+
 /// collisionDetect() stops refining the time of contact when the bracket is narrower
 /// than this fraction of the interval: far below any physical time scale of a step,
 /// well above the round-off of t in [0, 1].

@@ -151,14 +151,13 @@ TEST(ToleranceBoundary, EdgeExactlyEpsilonAboveAFaceIsALineContact) {
   expectFeatureStatus(edgeDownWedge(), -0.5 * kEps, Status::Contact, ContactType::Line);
 }
 
-// An edge between two faces at 45 degrees to the floor, sunk by d. Against a convex
-// floor (a box) the pair's penetration depth decides: d, so the edge is in contact up to
-// d = eps. A known failure, pinned (README, "Where polysim fails"): against a floor that
-// is no convex solid (a triangulated plane) the polygons' own measure decides, and it
-// reads the edge sqrt(2) d deep, because the floor face's cut through a slanted face lies
-// sqrt(2) d from the sharp edge along that face. There such an edge interpenetrates from
-// d = eps / sqrt 2, not from eps; when that measure is fixed, this test must flip too.
-TEST(ToleranceBoundary, EdgeSunkIntoAFaceIsContactUpToEpsilonOnConvexFloorsNotYetOnMeshes) {
+// An edge between two faces at 45 degrees to the floor, sunk by d: in contact up to
+// d = eps, on either floor. Against a box the pair's penetration depth decides; against a
+// triangulated plane (no convex solid) the polygons' own measure, which must read the
+// same d. It used to read sqrt(2) d: the floor face's cut through a slanted face lies
+// sqrt(2) d from the sharp edge along that face, and the depth behind that face alone
+// ignored the other face of the edge's wedge.
+TEST(ToleranceBoundary, EdgeSunkIntoAFaceIsContactUpToEpsilonOnBoxAndMeshFloors) {
   for (const Floor& floor : floors())
     for (double sunk : {0.5 * kEps, 0.75 * kEps, 0.9 * kEps, kEps + kJustOver}) {
       SCOPED_TRACE(std::string(floor.name) + ", sunk " + std::to_string(sunk / kEps) + " eps");
@@ -168,11 +167,9 @@ TEST(ToleranceBoundary, EdgeSunkIntoAFaceIsContactUpToEpsilonOnConvexFloorsNotYe
       db.add("floor", std::make_shared<PolygonMesh>(floor.mesh), floor.X, true);
       const IntersectionResult r = test4Intersection(db);
       ASSERT_EQ(r.pairs.size(), 1u);
-      const bool convexFloor = db.objects[1].mesh->convex();
-      const double measured = convexFloor ? sunk : std::sqrt(2.0) * sunk;
-      EXPECT_EQ(toString(r.status), measured > kEps ? "interpenetrating" : "contact");
-      if (measured > kEps) {
-        EXPECT_NEAR(r.pairs[0].depth, measured, 1e-12);
+      EXPECT_EQ(toString(r.status), sunk > kEps ? "interpenetrating" : "contact");
+      if (sunk > kEps) {
+        EXPECT_NEAR(r.pairs[0].depth, sunk, 1e-11);
       } else {
         ASSERT_EQ(r.pairs[0].contacts.size(), 1u);
         EXPECT_EQ(toString(r.pairs[0].contacts[0].type), "line");

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,11 +21,12 @@
 namespace polysim::sim {
 namespace {
 
-Scene generated(const std::string& kind, int count, unsigned long long seed = 1) {
+Scene generated(const std::string& kind, int count, unsigned long long seed = 1, std::optional<double> tilt = {}) {
   MakeOptions o;
   o.kind = kind;
   o.count = count;
   o.seed = seed;
+  o.tilt = tilt;
   const std::string path = ::polysim::test::tempPath("polysim_busy_" + kind + ".json");
   std::ofstream(path) << makeScene(o).dump(1) << "\n";
   Scene scene = loadScene(path);
@@ -113,6 +115,24 @@ TEST(BusyScenes, ColumnOfCupsKeepsTheEnergyBoundAndComesToRest) {
   World w(generated("cups", 6));
   const Watched seen = run(w, 10.0);
   expectInvariants(w, seen);
+}
+
+// Columns of 8 cups, each turned up to 0.3 rad: they land tilted in each other's mouths,
+// corners in corners and bottom edges across rims, then topple. Cups are not convex, so
+// the polygons' measure judges them; where it read deeper than the contacts held (a rim
+// corner inside another cup's corner, a bottom edge across a rim edge 100.8 um deep with
+// no contact), an island's clock stood still and the column gained energy without bound.
+// Not asserted: rest. Some columns still jitter at the solver's sweep limit.
+TEST(BusyScenes, ColumnsOfTiltedCupsKeepTheEnergyBoundAndNeverStall) {
+  for (unsigned long long seed : {1ull, 2ull, 3ull}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    World w(generated("cups", 8, seed, 0.3));
+    const Watched seen = run(w, 6.0);
+    EXPECT_TRUE(seen.finite);
+    EXPECT_LE(seen.energyRise, energyBound(w));
+    EXPECT_LE(seen.deepest, w.scene().contact.tolerance);
+    EXPECT_EQ(seen.stalledSteps, 0);
+  }
 }
 
 // 40 unit boxes resting on each other at dt 1/60 (the minute the issue asks for is
