@@ -88,11 +88,12 @@ struct AreaPolygon {
   Polygon2 polygon;
 };
 
+bool onArea(const Eigen::Vector3d& x, const AreaPolygon& a, double eps) {
+  return std::abs(a.frame.normal.dot(x - a.frame.origin)) <= eps && distanceToConvex(a.polygon, a.frame.to2d(x)) <= eps;
+}
+
 bool onArea(const Eigen::Vector3d& x, const std::vector<AreaPolygon>& areas, double eps) {
-  for (const AreaPolygon& a : areas)
-    if (std::abs(a.frame.normal.dot(x - a.frame.origin)) <= eps && distanceToConvex(a.polygon, a.frame.to2d(x)) <= eps)
-      return true;
-  return false;
+  return std::any_of(areas.begin(), areas.end(), [&](const AreaPolygon& a) { return onArea(x, a, eps); });
 }
 
 double distanceToSegment(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -304,8 +305,21 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
   std::vector<std::vector<const Contact*>> pointPieces;
   for (const Contact* point : points) {
     const Eigen::Vector3d& x = point->points[0];
-    bool covered = onArea(x, areas, eps);
-    for (const Contact& l : keptLines) covered = covered || distanceToSegment(x, l.points[0], l.points[1]) <= eps;
+    // An area or line covers a point on it; but where the pair is judged polygon pair by
+    // polygon pair, not a point sunk along a normal of its own that both its features
+    // admit (a cup's bottom edge along another cup's inner wall, dipping under its rim
+    // edge at the corner): that contact's normal would not hold it (see
+    // addSunkAlongOtherNormals).
+    bool ownNormal = false;
+    if (geometry && geometry->sunkHeldAlongEachFace && point->separation < 0.0) {
+      const auto [a, b] = admits(*geometry, *point, point->normal, eps);
+      ownNormal = a && b;
+    }
+    auto holds = [&](const Eigen::Vector3d& n) { return !ownNormal || (n - point->normal).norm() <= kNormalConeSlack; };
+    bool covered = false;
+    for (const AreaPolygon& a : areas) covered = covered || (onArea(x, a, eps) && holds(a.frame.normal));
+    for (const Contact& l : keptLines)
+      covered = covered || (distanceToSegment(x, l.points[0], l.points[1]) <= eps && holds(l.normal));
     for (size_t k = 0; k < keptPoints.size() && !covered; ++k)
       if ((keptPoints[k].points[0] - x).norm() <= eps) covered = true, pointPieces[k].push_back(point);
     if (!covered) keptPoints.push_back(*point), pointPieces.push_back({point});

@@ -20,12 +20,14 @@ struct PairGeometry {
   const PolygonMesh* meshB = nullptr;
   Eigen::Matrix3d R_WA = Eigen::Matrix3d::Identity(), R_WB = Eigen::Matrix3d::Identity();
   /// The pair's verdict is the polygons' own measure, face pair by face pair (objects
-  /// that are not convex; intersection.cpp). A point sunk behind two faces of the other
-  /// object (a cup's inner rim corner inside the corner of another cup's walls) then
-  /// keeps a contact along each face's normal, not one along the normal most pieces
-  /// admit: that measure reads the point's edges behind each face, and a contact along
-  /// one normal alone would let them sink along the other, to be found interpenetrating
-  /// at the very start of the next step.
+  /// that are not convex; intersection.cpp). A point sunk along a normal both its
+  /// features admit is then held along that normal: it keeps a contact of its own beside
+  /// the one along the normal most of its pieces admit (a cup's inner rim corner inside
+  /// the corner of another cup's walls, behind each wall), and is not dropped for lying
+  /// on a line or area along another normal (a bottom edge along an inner wall, dipping
+  /// under the rim edge at the corner). That measure reads the point that deep, and a
+  /// contact along another normal would let it sink until the pair is found
+  /// interpenetrating at the very start of the next step.
   bool sunkHeldAlongEachFace = false;
 };
 

@@ -16,6 +16,13 @@ bool insideCrease(const PolygonView& q, int k, const Eigen::Vector3d& x) {
   return q.plane.signedDistance(x) <= 0.0 && n.dot(x - q.vertices[k]) <= 0.0;
 }
 
+// Whether a point `along` m from the start of side k of q (`length` m long) lies within
+// `reach` of an end of that side where q's adjacent side is a convex crease.
+bool nearCappedEnd(const PolygonView& q, int k, double along, double length, double reach) {
+  const int before = (k + q.size - 1) % q.size, after = (k + 1) % q.size;
+  return (along <= reach && convexCrease(q, before)) || (length - along <= reach && convexCrease(q, after));
+}
+
 }  // namespace
 
 Eigen::Vector3d neighbourNormal(const PolygonView& q, int k) {
@@ -40,14 +47,17 @@ double deepestCrossing(const PolygonView& p, const PolygonView& q, double eps) {
       if (u.cross(v).norm() <= kParallelSine * u.norm() * v.norm()) continue;
       const SegmentClosestPoints cp = closestPointsOnSegments(p0, u, q0, v);
       if (cp.distance <= deepest || cp.distance > kCrossingReach * eps) continue;
-      // A crease is a wedge only away from its ends, where other faces begin: the
-      // closest points must lie farther than their distance from either end of both
-      // edges. Nearer, the crossing belongs to a vertex (a cup's bottom corner on another
-      // cup's rim, its corner edge's line 1.6 mm from the rim's inner edge 37 um above
-      // the corner, is no crossing: the corner's face below bounds it).
+      // A crease is a wedge only away from an end where a third face caps it (the
+      // polygon's next side there is a convex crease too): within their distance of such
+      // an end, the closest points say nothing about depth. A cup's bottom corner on
+      // another cup's rim, 1.6 mm outside the rim's inner edge, has its corner edge's line
+      // pass that edge 1.6 mm away 37 um above the corner, where the bottom face bounds
+      // it. Where the next side is a reflex crease or flat (a cup's inner rim edge ends in
+      // the inner corner of two walls), the object goes on past the end.
       const double uLength = u.norm(), vLength = v.norm();
       const double s = u.dot(cp.onFirst - p0) / uLength, t = v.dot(cp.onSecond - q0) / vLength;  // m along each
-      if (std::min(s, uLength - s) <= cp.distance || std::min(t, vLength - t) <= cp.distance) continue;
+      if (s <= 0.0 || s >= uLength || t <= 0.0 || t >= vLength) continue;  // an end: its vertex's to report
+      if (nearCappedEnd(p, i, s, uLength, cp.distance) || nearCappedEnd(q, j, t, vLength, cp.distance)) continue;
       if (insideCrease(q, j, cp.onFirst) && insideCrease(p, i, cp.onSecond)) deepest = cp.distance;
     }
   }

@@ -31,11 +31,12 @@ double deepestInWedge(const PolygonView& q, const std::vector<Eigen::Vector3d>& 
                       PolygonScratch& scratch);
 
 /// The deepest crossing (m) of a convex crease of p with a convex crease of q: two such
-/// edges whose closest points lie inside both segments, farther from either end than
-/// their distance, each point inside the other edge's wedge, at a distance (the gap an
-/// edge-edge contact measures, along their common normal) up to kCrossingReach * eps.
-/// 0 when there is none. Crossings near an end are left to the vertex there, parallel
-/// edges to line contacts.
+/// edges whose closest points lie inside both segments, each point inside the other
+/// edge's wedge, at a distance (the gap an edge-edge contact measures, along their
+/// common normal) up to kCrossingReach * eps. 0 when there is none. Closest points at
+/// an end, or nearer than their distance to an end where a third face caps the wedge
+/// (the polygon's side there is a convex crease), are left to the vertex there;
+/// parallel edges to line contacts.
 double deepestCrossing(const PolygonView& p, const PolygonView& q, double eps);
 
 }  // namespace polysim::collision

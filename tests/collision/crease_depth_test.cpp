@@ -41,39 +41,48 @@ IntersectionResult testPair(const Eigen::Isometry3d& X_upper) {
 
 // The upper cup's bottom edge along its -x side crosses the lower cup's inner rim edge
 // on the +y side, d below it along their common normal. The upper cup's bottom rises
-// along x (slope kx) and along that edge (slope ky), steeply enough along x that its
-// far side clears the lower cup's rim: nothing else of it meets the lower cup. Inside the lower cup's wall the edge lies at most d / (1 + ky) behind both
-// the rim and the inner wall, less than d: only the crossing itself reads d.
+// along x (slope kx) and along that edge (slope ky), steeply enough along x that its far
+// side clears the lower cup's rim: nothing else of it meets the lower cup. Inside the
+// lower cup's wall the edge lies at most d / (1 + ky) behind both the rim and the inner
+// wall, less than d: only the crossing itself reads d. The crossing lies mid-edge, or
+// 0.3 eps from the rim edge's end at the inner corner of two walls, where the lower cup
+// goes on past that end (no third face caps the rim edge's wedge there).
 TEST(CreaseDepth, BottomEdgeAcrossARimEdgeInterpenetratesOnceTheCrossingPassesEpsilon) {
-  for (const auto& [kx, ky] : {std::pair{0.03, 0.0112}, std::pair{0.1, 0.05}, std::pair{0.08, 0.04}})
-    for (double d : {0.5 * kEps, 0.9 * kEps, 1.01 * kEps, 1.5 * kEps}) {
-      SCOPED_TRACE("slopes " + std::to_string(kx) + ", " + std::to_string(ky) + "; d " + std::to_string(d / kEps) + " eps");
-      const Eigen::Matrix3d R = (Eigen::AngleAxisd(-std::atan(kx), V3::UnitY()) * Eigen::AngleAxisd(std::atan(ky), V3::UnitX())).toRotationMatrix();
-      // Near the lower cup's -x wall, the upper cup's -y side over the cavity.
-      V3 t(-0.3 + kHalf, 0.06, kHeight);
-      const V3 rimPoint(0.0, kInner, kHeight), rimDir = V3::UnitX();  // the lower cup's inner rim edge
-      const V3 edgeDir = R * V3::UnitY();                               // the upper cup's bottom -x edge
-      const V3 n = rimDir.cross(edgeDir).normalized() * (rimDir.cross(edgeDir).z() > 0 ? 1.0 : -1.0);
-      // Shift along n (square to both edges) until the edge lies d below the rim edge.
-      const double offset = n.dot(rimPoint - (t + R * V3(-kHalf, -kHalf, 0.0)));
-      t += (offset - d) * n;
-      const IntersectionResult r = testPair(placed(R, t));
-      ASSERT_EQ(r.pairs.size(), 1u);
-      if (d > kEps) {
-        // The depth reported is the first measure found past eps: at most the crossing's.
-        EXPECT_EQ(toString(r.status), "interpenetrating");
-        EXPECT_GT(r.pairs[0].depth, kEps);
-        EXPECT_LE(r.pairs[0].depth, d + 1e-12);
-        continue;
+  for (double crossingX : {-0.3, -kInner + 0.3 * kEps})
+    for (const auto& [kx, ky] : {std::pair{0.03, 0.0112}, std::pair{0.1, 0.05}, std::pair{0.08, 0.04}})
+      for (double d : {0.5 * kEps, 0.9 * kEps, 1.01 * kEps, 1.5 * kEps}) {
+        SCOPED_TRACE("crossing at x " + std::to_string(crossingX) + "; slopes " + std::to_string(kx) + ", " +
+                     std::to_string(ky) + "; d " + std::to_string(d / kEps) + " eps");
+        const Eigen::Matrix3d R = (Eigen::AngleAxisd(-std::atan(kx), V3::UnitY()) * Eigen::AngleAxisd(std::atan(ky), V3::UnitX())).toRotationMatrix();
+        // The upper cup's -y side over the cavity, its -x side at the crossing.
+        V3 t(crossingX + kHalf, 0.06, kHeight);
+        const V3 rimPoint(0.0, kInner, kHeight), rimDir = V3::UnitX();  // the lower cup's inner rim edge
+        const V3 edgeDir = R * V3::UnitY();                               // the upper cup's bottom -x edge
+        const V3 n = rimDir.cross(edgeDir).normalized() * (rimDir.cross(edgeDir).z() > 0 ? 1.0 : -1.0);
+        // Shift along n (square to both edges) until the edge lies d below the rim edge.
+        const double offset = n.dot(rimPoint - (t + R * V3(-kHalf, -kHalf, 0.0)));
+        t += (offset - d) * n;
+        // Slide along the rim edge (which keeps their distance) to put the crossing at x.
+        const V3 edgeStart = t + R * V3(-kHalf, -kHalf, 0.0);
+        const double along = (kInner - edgeStart.y()) / edgeDir.y();  // where the edge passes y = kInner
+        t.x() += crossingX - (edgeStart + along * edgeDir).x();
+        const IntersectionResult r = testPair(placed(R, t));
+        ASSERT_EQ(r.pairs.size(), 1u);
+        if (d > kEps) {
+          // The depth reported is the first measure found past eps: at most the crossing's.
+          EXPECT_EQ(toString(r.status), "interpenetrating");
+          EXPECT_GT(r.pairs[0].depth, kEps);
+          EXPECT_LE(r.pairs[0].depth, d + 1e-12);
+          continue;
+        }
+        ASSERT_EQ(toString(r.status), "contact");
+        // The contact holding the crossing: along the common normal (from the upper cup
+        // towards the lower), at gap -d.
+        bool held = false;
+        for (const Contact& c : r.pairs[0].contacts)
+          held = held || ((c.normal + n).norm() < 1e-9 && std::abs(c.separation + d) < 1e-12);
+        EXPECT_TRUE(held);
       }
-      ASSERT_EQ(toString(r.status), "contact");
-      // The contact holding the crossing: along the common normal (from the upper cup
-      // towards the lower), at gap -d.
-      bool held = false;
-      for (const Contact& c : r.pairs[0].contacts)
-        held = held || ((c.normal + n).norm() < 1e-9 && std::abs(c.separation + d) < 1e-12);
-      EXPECT_TRUE(held);
-    }
 }
 
 // The lower cup's inner rim corner lies inside the upper cup's outer corner (the upper
