@@ -66,10 +66,9 @@ std::optional<Bracket> scanByTests(Search& s, int subintervals, std::optional<In
 // The same scan when the separating axis test measures every pair that can meet: an end
 // where each of them is apart (separation >= 0) cannot interpenetrate and needs no full
 // test, nor does a pair whose boxes are farther apart than the tolerance need measuring.
-// A pair that overlaps by more than the tolerance along every axis is taken to
-// interpenetrate; should the full test have called that state contact, the search just
-// returns an earlier time of contact (it never returns an interpenetrating state).
-// Between the two the full test decides.
+// A pair that overlaps by more than the tolerance along every axis interpenetrates:
+// the full test judges convex pairs by that same depth (testObjectPair). Between the
+// two the full test decides.
 std::optional<Bracket> scanBySeparation(Search& s, int subintervals) {
   const double eps = s.db.tolerance;
   for (int k = 1; k <= subintervals; ++k) {
