@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "collision/clip.h"
 #include "collision/segment_distance.h"
 #include "collision/tolerances.h"
 
@@ -30,12 +29,11 @@ Eigen::Vector3d neighbourNormal(const PolygonView& q, int k) {
   return 2.0 * q.plane.normal.dot(o) * o - q.plane.normal;
 }
 
-bool convexCrease(const PolygonView& q, int k) {
-  return !q.edgeFlat[k] && q.sideNormal[k].dot(neighbourNormal(q, k)) > kFlatEdgeAngle;
-}
+bool convexCrease(const PolygonView& q, int k) { return q.convexSide[k] != 0; }
 
 double deepestCrossing(const PolygonView& p, const PolygonView& q, double eps) {
   double deepest = 0.0;
+  if (!p.anyConvexSide || !q.anyConvexSide) return deepest;
   for (int i = 0; i < p.size; ++i) {
     if (!convexCrease(p, i)) continue;
     const Eigen::Vector3d& p0 = p.vertices[i];
@@ -67,7 +65,7 @@ double deepestCrossing(const PolygonView& p, const PolygonView& q, double eps) {
 // Measured behind q alone, a cup's inner rim corner sunk into the outer corner of another
 // cup would read as deep as it lies behind one wall, though it is held by the contact on
 // the other wall, which is shallower; a step would then never leave that state.
-double deepestInWedge(const PolygonView& q, const std::vector<Eigen::Vector3d>& polygon, double enough, PolygonScratch& s) {
+double deepestInWedge(const PolygonView& q, const std::vector<Eigen::Vector3d>& polygon, PolygonScratch& s) {
   s.wedge.clear();  // planes (outward normal, offset): a point's depth behind each is offset - normal . x
   s.wedge.push_back({q.plane.normal, q.plane.offset});
   for (int k = 0; k < q.size; ++k) {
@@ -75,37 +73,55 @@ double deepestInWedge(const PolygonView& q, const std::vector<Eigen::Vector3d>& 
     const Eigen::Vector3d neighbour = neighbourNormal(q, k);
     s.wedge.push_back({neighbour, neighbour.dot(q.vertices[k])});
   }
+  const int planes = static_cast<int>(s.wedge.size()), corners = static_cast<int>(polygon.size());
   auto depthAt = [&s](const Eigen::Vector3d& x) {
     double d = std::numeric_limits<double>::infinity();
     for (const auto& [normal, offset] : s.wedge) d = std::min(d, offset - normal.dot(x));
     return d;
   };
-  // The depth is concave over the polygon: at least its largest at a corner, at most the
-  // largest depth behind q (at a corner too, being linear).
-  double lo = 0.0, hi = 0.0;
-  for (const Eigen::Vector3d& x : polygon) {
-    lo = std::max(lo, depthAt(x));
-    hi = std::max(hi, -q.plane.signedDistance(x));
+  // The depth is the least of linear functions, concave over the polygon: it is largest
+  // at a corner of the polygon's division into the regions where one plane is the
+  // nearest. Such a corner is a corner of the polygon, a point of its side where two
+  // planes are equally near, or a point inside where three are. Every candidate lies in
+  // the polygon, so none can read deeper than the deepest point.
+  double deepest = 0.0;
+  for (const Eigen::Vector3d& x : polygon) deepest = std::max(deepest, depthAt(x));
+  if (planes == 1) return deepest;  // behind q alone the depth is linear
+  for (int c = 0; c < corners; ++c) {
+    const Eigen::Vector3d& a = polygon[c];
+    const Eigen::Vector3d side = polygon[(c + 1) % corners] - a;
+    for (int i = 0; i < planes; ++i)
+      for (int j = i + 1; j < planes; ++j) {
+        // f_i - f_j along a + t side, t in (0, 1): zero where the two are equally near.
+        const Eigen::Vector3d dn = s.wedge[j].first - s.wedge[i].first;
+        const double at0 = s.wedge[i].second - s.wedge[j].second + dn.dot(a), slope = dn.dot(side);
+        if (slope == 0.0) continue;
+        const double t = -at0 / slope;
+        if (t > 0.0 && t < 1.0) deepest = std::max(deepest, depthAt(a + t * side));
+      }
   }
-  // Whether some point of the polygon lies at least `depth` inside every plane.
-  auto reaches = [&s, &polygon](double depth) {
-    s.deepA = polygon;
-    for (const auto& [normal, offset] : s.wedge) {
-      clipBelow(s.deepA, normal, offset - depth, s.deepB);
-      s.deepA.swap(s.deepB);
-      if (s.deepA.empty()) return false;
-    }
+  Eigen::Vector3d areaNormal = Eigen::Vector3d::Zero();  // Newell's: twice the area along the normal
+  for (int c = 0; c < corners; ++c) areaNormal += polygon[c].cross(polygon[(c + 1) % corners]);
+  if (corners < 3 || areaNormal.squaredNorm() == 0.0) return deepest;
+  const Eigen::Vector3d normal = areaNormal.normalized();
+  auto inside = [&](const Eigen::Vector3d& x) {
+    for (int c = 0; c < corners; ++c)
+      if ((polygon[(c + 1) % corners] - polygon[c]).cross(x - polygon[c]).dot(normal) < 0.0) return false;
     return true;
   };
-  if (enough >= 0.0 && lo <= enough) {
-    if (!reaches(enough)) return lo;
-    lo = enough;
-  }
-  while (hi - lo > kDepthResolution) {
-    const double mid = 0.5 * (lo + hi);
-    (reaches(mid) ? lo : hi) = mid;
-  }
-  return lo;
+  for (int i = 0; i < planes; ++i)
+    for (int j = i + 1; j < planes; ++j)
+      for (int k = j + 1; k < planes; ++k) {
+        // x in the polygon's plane where f_i = f_j = f_k, by Cramer's rule.
+        const Eigen::Vector3d r0 = s.wedge[j].first - s.wedge[i].first, r1 = s.wedge[k].first - s.wedge[i].first;
+        const Eigen::Vector3d r1xn = r1.cross(normal), nxr0 = normal.cross(r0), r0xr1 = r0.cross(r1);
+        const double det = r0.dot(r1xn);
+        if (det == 0.0) continue;  // the points where all three agree form a line or none: see the sides
+        const double b0 = s.wedge[j].second - s.wedge[i].second, b1 = s.wedge[k].second - s.wedge[i].second;
+        const Eigen::Vector3d x = (b0 * r1xn + b1 * nxr0 + normal.dot(polygon[0]) * r0xr1) / det;
+        if (inside(x)) deepest = std::max(deepest, depthAt(x));
+      }
+  return deepest;
 }
 
 }  // namespace polysim::collision

@@ -19,16 +19,14 @@ namespace polysim::collision {
 Eigen::Vector3d neighbourNormal(const PolygonView& q, int k);
 
 /// True when side k of q is a convex crease: the face across it turns away from q's
-/// side by more than kFlatEdgeAngle.
+/// side by more than kFlatEdgeAngle (classified once, with the mesh).
 bool convexCrease(const PolygonView& q, int k);
 
-/// How deep (m) the deepest point of `polygon` (planar, behind q's plane and over q)
-/// lies inside q's object: the largest over the polygon of the least of a point's
-/// depths behind q and behind the face across each convex crease of q, to within
-/// kDepthResolution. A caller that only asks whether it exceeds `enough` (>= 0) may get
-/// any value not above `enough` when it does not.
-double deepestInWedge(const PolygonView& q, const std::vector<Eigen::Vector3d>& polygon, double enough,
-                      PolygonScratch& scratch);
+/// How deep (m) the deepest point of `polygon` (planar, convex, behind q's plane and over
+/// q) lies inside q's object: the largest over the polygon of the least of a point's
+/// depths behind q and behind the face across each convex crease of q; 0 when no point
+/// is behind them all. Exact up to rounding (no search).
+double deepestInWedge(const PolygonView& q, const std::vector<Eigen::Vector3d>& polygon, PolygonScratch& scratch);
 
 /// The deepest crossing (m) of a convex crease of p with a convex crease of q: two such
 /// edges whose closest points lie inside both segments, each point inside the other

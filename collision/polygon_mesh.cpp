@@ -201,6 +201,7 @@ PolygonMesh::PolygonMesh(MeshData data) {
     // Two faces folded flat onto each other have no outward direction; keep face0's.
     edgeOutward_.push_back(out.norm() > kParallelSine ? out.normalized() : planes_[e.face0].normal);
   }
+  classifySides();
   convex_ = !edges_.empty() && closed_ && connected() && foldsOutward();
   for (int x = -1; x <= 1 && !vertices_.empty(); ++x)
     for (int y = -1; y <= 1; ++y)
@@ -230,6 +231,21 @@ void PolygonMesh::findSeparatingDirections() {
     few = addDistinct(edgeDirections_, (vertices_[edges_[e].v1] - vertices_[edges_[e].v0]).normalized());
   if (!few) faceDirections_.clear(), edgeDirections_.clear();
   if (few && vertices_.size() <= kScanUpTo) findMirroredHalf();
+}
+
+void PolygonMesh::classifySides() {
+  sideConvex_.assign(faceIndices_.size(), 0);
+  for (int f = 0; f < faceCount(); ++f) {
+    const int* ids = faceVertices(f);
+    const Eigen::Vector3d& n = planes_[f].normal;
+    for (int i = 0, size = faceSize(f); i < size; ++i) {
+      const MeshEdge& e = edges_[faceEdge(f, i)];
+      if (e.face1 < 0 || edgeFlat_[faceEdge(f, i)]) continue;  // a boundary or a flat patch bounds nothing
+      const Eigen::Vector3d side = (vertices_[ids[(i + 1) % size]] - vertices_[ids[i]]).cross(n).normalized();
+      const Eigen::Vector3d& across = planes_[e.face0 == f ? e.face1 : e.face0].normal;
+      sideConvex_[faceStart_[f] + i] = side.dot(across) > kFlatEdgeAngle;
+    }
+  }
 }
 
 void PolygonMesh::findMirroredHalf() {

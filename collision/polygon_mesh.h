@@ -63,6 +63,10 @@ class PolygonMesh {
   /// True when edge e joins two faces in the same plane (within kFlatEdgeAngle): an
   /// internal edge of a flat patch, not a crease or boundary of the surface.
   bool edgeIsFlat(int e) const { return edgeFlat_[e] != 0; }
+  /// True when side i of face f (vertex i to i+1) is a convex crease: the face across it
+  /// turns away from f's side by more than kFlatEdgeAngle (a box's edges, a cup's rim).
+  /// Reflex creases, flat edges and open boundaries are not. A rigid motion keeps it.
+  bool sideIsConvexCrease(int f, int i) const { return sideConvex_[faceStart_[f] + i] != 0; }
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
   bool closed() const { return closed_; }
   /// True when the mesh bounds a convex solid: closed, connected, and every pair of
@@ -100,6 +104,7 @@ class PolygonMesh {
   bool foldsOutward() const;  // closed mesh: no edge folds inward
   void findSeparatingDirections();
   void findMirroredHalf();
+  void classifySides();       // fills sideConvex_ from the planes and edges
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<int> faceStart_;    // CSR offsets into faceIndices_, size faceCount()+1
@@ -112,6 +117,7 @@ class PolygonMesh {
   std::vector<int> vertexEdges_;
   std::vector<Eigen::Vector3d> edgeOutward_;
   std::vector<char> edgeFlat_;
+  std::vector<char> sideConvex_;  // parallel to faceIndices_
   Eigen::AlignedBox3d bounds_;
   bool closed_ = false;
   bool convex_ = false;

@@ -115,7 +115,7 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, P
     s.clipA.swap(s.clipB);
     clipBelow(s.clipA, q.sideNormal[k], q.sideNormal[k].dot(u), s.clipB);
   }
-  return std::min(cutDepth, deepestInWedge(q, s.clipB, enough, s));
+  return std::min(cutDepth, deepestInWedge(q, s.clipB, s));
 }
 
 // A contact without points yet (Contact::addPoint adds them with their gaps).

@@ -18,6 +18,8 @@ struct PolygonView {
   const int* vertexIds = nullptr;                // mesh vertex of each corner
   const int* edgeIds = nullptr;                  // mesh edge of each side
   const char* edgeFlat = nullptr;                // side i is a flat internal edge (no boundary)
+  const char* convexSide = nullptr;              // side i is a convex crease (PolygonMesh::sideIsConvexCrease)
+  bool anyConvexSide = false;                    // some side is (a floor's triangle has none)
   int size = 0;
   Plane plane;                                   // world, normal out of the object
   int faceId = -1;
@@ -27,7 +29,6 @@ struct PolygonView {
 struct PolygonScratch {
   std::vector<double> dP, dQ;
   std::vector<Eigen::Vector3d> clipA, clipB;
-  std::vector<Eigen::Vector3d> deepA, deepB;                    // a polygon cut down to its deepest part
   std::vector<std::pair<Eigen::Vector3d, double>> wedge;       // planes bounding an object near a face
   Polygon2 p2, q2, overlap, clipWork;
   std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge

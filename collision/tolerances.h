@@ -81,13 +81,6 @@ inline constexpr double kFacesPerVoxel = 32.0;
 /// and 4; curved shapes go over and are measured polygon by polygon instead.
 inline constexpr int kMaxSeparatingDirections = 16;
 
-/// How finely (m) the depth of a polygon inside the wedge of two faces at a convex
-/// crease is bisected (crease_depth.cpp): seven orders below the smallest contact
-/// tolerance scenes use (1e-5 m), so that a verdict at eps, the depth reported and
-/// regula falsi's root in the depth are all far finer than the band; about 27 halvings
-/// of a 0.1 mm range.
-inline constexpr double kDepthResolution = 1e-12;
-
 /// How deep (in contact tolerances) two crossing creases of objects that are not convex
 /// are measured (crease_depth.cpp): a crossing beyond eps is interpenetration, and one
 /// this deep is always seen as such. Far deeper, the closest points of two creases may

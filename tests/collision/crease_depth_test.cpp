@@ -6,11 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <random>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
+#include "collision/clip.h"
+#include "collision/crease_depth.h"
 #include "collision/intersection.h"
+#include "collision/shapes.h"
+#include "collision/world_faces.h"
 #include "tests/test_support.h"
 
 namespace polysim::collision {
@@ -156,6 +162,81 @@ TEST(CreaseDepth, CornerOnARimBesideItsInnerEdgeIsNoCrossing) {
     EXPECT_LT(cornerOverRim, -5e-5);
     EXPECT_NEAR(deepest, cornerOverRim, 1e-9);
   }
+}
+
+// Whether some point of `polygon` lies at least `depth` behind every plane (normal,
+// offset): the polygon clipped by each plane moved `depth` inwards is not empty.
+bool reaches(std::vector<V3> polygon, const std::vector<std::pair<V3, double>>& planes, double depth) {
+  std::vector<V3> clipped;
+  for (const auto& [normal, offset] : planes) {
+    clipBelow(polygon, normal, offset - depth, clipped);
+    polygon.swap(clipped);
+    if (polygon.empty()) return false;
+  }
+  return true;
+}
+
+// deepestInWedge against a search that shares nothing with it: random convex polygons
+// near a face, at random poses, on the faces of a box (a wedge of five planes), a cup's
+// rim (three), its inner wall (two) and its outer wall (five). The wedge is read off the
+// mesh: the face's plane and, across each convex crease, the neighbour's. No point of
+// the polygon may lie 1e-9 m deeper than the answer, and one must lie within 1e-9 m of it.
+TEST(CreaseDepth, DeepestInTheWedgeIsTheDeepestPointOfThePolygon) {
+  const PolygonMesh box(makeBox(V3(1.0, 0.7, 0.5)));
+  const PolygonMesh cupMesh(test::makeCup(kHalf, kHeight, 0.05, 0.05));
+  std::mt19937 rng(20261130);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto randomRotation = [&] {
+    return Eigen::Quaterniond(V3(unit(rng), unit(rng), unit(rng)).normalized().x(), unit(rng) - 0.5,
+                              unit(rng) - 0.5, unit(rng) - 0.5).normalized().toRotationMatrix();
+  };
+  int deeperThanZero = 0;
+  for (const auto& [mesh, face] : {std::pair{&box, 0}, std::pair{&box, 3}, std::pair{&cupMesh, 3},
+                                   std::pair{&cupMesh, 4}, std::pair{&cupMesh, 2}})
+    for (int trial = 0; trial < 200; ++trial) {
+      SCOPED_TRACE("face " + std::to_string(face) + ", trial " + std::to_string(trial));
+      ObjectDatabase db;
+      db.add("object", std::make_shared<PolygonMesh>(*mesh), placed(randomRotation(), V3(unit(rng), unit(rng), unit(rng))), false);
+      const ObjNode& object = db.objects[0];
+      WorldFaces faces;
+      faces.reset(object);
+      const PolygonView q = faces.view(face);
+      std::vector<std::pair<V3, double>> wedge{{q.plane.normal, q.plane.offset}};
+      for (int i = 0; i < mesh->faceSize(face); ++i) {
+        if (!mesh->sideIsConvexCrease(face, i)) continue;
+        const MeshEdge& e = mesh->edges()[mesh->faceEdge(face, i)];
+        const Plane& across = mesh->facePlane(e.face0 == face ? e.face1 : e.face0);
+        const V3 n = object.X_WO.linear() * across.normal;
+        wedge.push_back({n, across.offset + n.dot(object.X_WO.translation())});
+      }
+      // A convex polygon: corners on an ellipse about a point up to 0.15 m behind the face.
+      V3 centre = V3::Zero();
+      double weights = 0.0;
+      for (int i = 0; i < q.size; ++i) {
+        const double w = unit(rng);
+        centre += w * q.vertices[i], weights += w;
+      }
+      centre = centre / weights - 0.15 * unit(rng) * q.plane.normal;
+      const Eigen::Matrix3d frame = trial % 4 == 0 ? Eigen::Matrix3d(Eigen::Quaterniond::FromTwoVectors(V3::UnitZ(), q.plane.normal))
+                                                   : randomRotation();  // one in four parallel to the face
+      const int corners = 3 + trial % 4;
+      const double a = 0.05 + 0.35 * unit(rng), b = 0.05 + 0.35 * unit(rng);
+      std::vector<V3> polygon;
+      for (int c = 0; c < corners; ++c) {
+        const double angle = 2.0 * M_PI * (c + 0.8 * unit(rng)) / corners;
+        polygon.push_back(centre + frame * V3(a * std::cos(angle), b * std::sin(angle), 0.0));
+      }
+      PolygonScratch scratch;
+      const double deepest = deepestInWedge(q, polygon, scratch);
+      EXPECT_FALSE(reaches(polygon, wedge, deepest + 1e-9));
+      if (deepest > 0.0) {
+        EXPECT_TRUE(reaches(polygon, wedge, deepest - 1e-9));
+        ++deeperThanZero;
+      } else {
+        EXPECT_FALSE(reaches(polygon, wedge, 1e-9));
+      }
+    }
+  EXPECT_GT(deeperThanZero, 500);  // the polygons mostly do reach inside
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "collision/shapes.h"
 #include "tests/test_support.h"
 
@@ -41,6 +43,34 @@ TEST(PolygonMesh, TriangulatedFloorIsOpenWithFlatInnerEdges) {
   for (size_t e = 0; e < floor.edges().size(); ++e) flat += floor.edgeIsFlat(static_cast<int>(e));
   EXPECT_EQ(flat, 8);  // 4 inner grid edges + 4 diagonals
   EXPECT_FALSE(validateMesh(makeTriangulatedFloor(2, 2, 2), true).empty());
+}
+
+// Convex creases bound the wedge a polygon's depth is measured in (crease_depth.h): a
+// box's every side; of a cup's faces, the outer walls' and the rim's outer and inner top
+// edges, but not the rim's seams (flat), nor the cavity's corners (reflex); none of a
+// floor's triangles (flat inside, open at the border).
+TEST(PolygonMesh, ConvexCreasesAreTheSidesWhereTheSurfaceFoldsOutward) {
+  const PolygonMesh box(makeBox(V3(1, 2, 3)));
+  for (int f = 0; f < box.faceCount(); ++f)
+    for (int i = 0; i < box.faceSize(f); ++i) EXPECT_TRUE(box.sideIsConvexCrease(f, i)) << f << " " << i;
+
+  const PolygonMesh cup(test::makeCup(0.5, 0.6, 0.05, 0.05));
+  auto sides = [&cup](int f) {
+    std::string s;
+    for (int i = 0; i < cup.faceSize(f); ++i) s += cup.sideIsConvexCrease(f, i) ? 'x' : '.';
+    return s;
+  };
+  EXPECT_EQ(sides(0), "xxxx");  // bottom
+  EXPECT_EQ(sides(1), "....");  // cavity floor
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(sides(2 + 3 * k), "xxxx") << "outer wall " << k;
+    EXPECT_EQ(sides(3 + 3 * k), "x.x.") << "rim " << k;
+    EXPECT_EQ(sides(4 + 3 * k), "x...") << "inner wall " << k;
+  }
+
+  const PolygonMesh floor(makeTriangulatedFloor(2, 2, 2));
+  for (int f = 0; f < floor.faceCount(); ++f)
+    for (int i = 0; i < floor.faceSize(f); ++i) EXPECT_FALSE(floor.sideIsConvexCrease(f, i)) << f << " " << i;
 }
 
 TEST(PolygonMesh, RejectsEachKindOfBadFace) {
