@@ -136,11 +136,11 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
 }
 
 // Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
-// kMaxSolverIterations are made: each block's friction rows, then its normal impulses.
+// maxSweeps are made: each block's friction rows, then its normal impulses.
 SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
-                      const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group) {
+                      const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
   SolveStats stats;
-  while (stats.iterations < kMaxSolverIterations) {
+  while (stats.iterations < maxSweeps) {
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
     for (int k : group) {
@@ -214,7 +214,7 @@ void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt) {
 }  // namespace
 
 SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
-                         double allowedOverlap) {
+                         double allowedOverlap, int maxSweeps) {
   std::vector<Row> rows;
   rows.reserve(contacts.size());
   std::vector<BodyFrame> frames;
@@ -281,7 +281,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   SolveStats stats;
   stats.converged = true;
   for (const std::vector<int>& group : groupsOf(rows, blocks, static_cast<int>(bodies.size()))) {
-    const SolveStats swept = sweepGroup(rows, blocks, couplingOf, group);
+    const SolveStats swept = sweepGroup(rows, blocks, couplingOf, group, maxSweeps);
     stats.iterations = std::max(stats.iterations, swept.iterations);
     stats.converged = stats.converged && swept.converged;
     stats.rowSolves += swept.rowSolves;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dynamics/rigid_body.h"
+#include "dynamics/settings.h"
 
 namespace polysim::dynamics {
 
@@ -54,12 +55,13 @@ struct SolveStats {
 /// Starting from each contact's given impulses (warm start) lets a resting stack carry
 /// its weight from the first sweep; they are clamped to the same limits first.
 /// Contacts that share no moving body (two piles on one floor) are swept apart, each
-/// group until it converges (or reaches kMaxSolverIterations) on its own.
+/// group until it converges (or reaches `maxSweeps`, kMaxSolverIterations unless the
+/// scene says otherwise) on its own.
 /// Then the push velocities of the bodies touched are set afresh (split impulses,
 /// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at
 /// (depth - allowedOverlap) / dt or more, no contact's push approaches, and push impulses
 /// are >= 0 and frictionless.
 SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
-                         double allowedOverlap = 0.0);
+                         double allowedOverlap = 0.0, int maxSweeps = kMaxSolverIterations);
 
 }  // namespace polysim::dynamics

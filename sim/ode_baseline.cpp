@@ -152,6 +152,7 @@ nlohmann::ordered_json compareWithOde(const Scene& scene, const RunOptions& opti
   comparison["first_contact_time"] = both(time(mine.firstContactTime), time(ode.firstContactTime));
   comparison["max_penetration"] = both(forOutput(mine.maxPenetration), forOutput(ode.maxPenetration));
   comparison["energy_final"] = both(forOutput(mine.finalEnergy), forOutput(ode.finalEnergy));
+  comparison["time_to_rest"] = both(time(mine.timeToRest), time(ode.timeToRest));
   comparison["wall_time_s"] = both(mine.wallTime, ode.wallTime);
   comparison["bodies"] = bodies;
   comparison["contacts"] = agreement.toJson();

@@ -7,7 +7,9 @@ One panel per scene and measure. x: CPU time per simulated second (the stepping 
 so runs sharing a machine do not inflate it; wall time for a CSV from before the sweep
 recorded CPU time); y: error against the analytic answer. Each line is one engine setting (solver and its parameter) through the
 steps it was run at, smallest step at the costly end. Errors below 1e-12 are drawn at
-1e-12 (the panels are logarithmic). Runs with ODE solver warnings are drawn hollow.
+1e-12 (the panels are logarithmic), but for figures with no analytic answer (the time to
+rest, the run's length when the scene never came to rest), drawn as they are on a linear
+scale. Runs with ODE solver warnings are drawn hollow.
 Needs Debian's python3-matplotlib; run with /usr/bin/python3.
 """
 import csv
@@ -23,8 +25,11 @@ ERROR_FLOOR = 1e-12
 COLUMNS = ["scene", "engine", "solver", "parameter_name", "parameter", "dt", "cost_s_per_s", "metric", "error",
            "solver_warnings"]
 UNITS = {"first_contact_time": "s", "rest_height": "m", "bounce_apex": "m", "slide_distance": "m",
-         "stack_drift": "m", "max_penetration": "m", "displacement": "m", "energy_gain": "J"}
+         "stack_drift": "m", "max_penetration": "m", "displacement": "m", "energy_gain": "J", "time_to_rest": "s"}
+# Figures with no analytic answer: the sweep writes 0 for it, so the "error" is the figure.
+NO_ANALYTIC_ANSWER = {"time_to_rest"}
 COLOURS = {("polysim", "bisection"): "tab:blue", ("polysim", "regula-falsi"): "tab:green",
+           ("polysim", "regula-falsi", "solver_sweeps"): "tab:purple",
            ("ode", "quickstep"): "tab:red", ("ode", "worldstep"): "tab:orange"}
 MARKERS = "osD^v<>"
 
@@ -50,9 +55,18 @@ def read_rows(path):
         return rows
 
 
+def series_key(row):
+    """Engine and solver, and the parameter's name where one solver sweeps two (polysim)."""
+    if row["parameter_name"] == "solver_sweeps":
+        return (row["engine"], row["solver"], "solver_sweeps")
+    return (row["engine"], row["solver"])
+
+
 def label(row):
     if row["parameter_name"] == "tolerance_m":
         return f"{row['engine']} {row['solver']}, tol {row['parameter']:g} m"
+    if row["parameter_name"] == "solver_sweeps":
+        return f"{row['engine']} {row['solver']}, {int(row['parameter'])} solver sweeps"
     if row["parameter_name"] == "iterations":
         return f"{row['engine']} {row['solver']} {int(row['parameter'])} it."
     return f"{row['engine']} {row['solver']}"
@@ -66,7 +80,7 @@ def plot(rows, out):
     fig, axes = plt.subplots(lines_of_panels, columns, figsize=(5.2 * columns, 4.2 * lines_of_panels), squeeze=False)
     parameters = defaultdict(list)  # per (engine, solver): its parameter values, for the markers
     for r in rows:
-        key = (r["engine"], r["solver"])
+        key = series_key(r)
         if r["parameter"] not in parameters[key]:
             parameters[key].append(r["parameter"])
     handles = {}
@@ -74,23 +88,25 @@ def plot(rows, out):
         series = defaultdict(list)
         for r in rows:
             if (r["scene"], r["metric"]) == (scene, metric):
-                series[(r["engine"], r["solver"], r["parameter"])].append(r)
-        for (engine, solver, parameter), points in series.items():
+                series[(series_key(r), r["parameter"])].append(r)
+        for (key, parameter), points in series.items():
             points.sort(key=lambda r: -r["dt"])
-            colour = COLOURS.get((engine, solver), "black")
-            marker = MARKERS[parameters[(engine, solver)].index(parameter) % len(MARKERS)]
+            colour = COLOURS.get(key, "black")
+            marker = MARKERS[parameters[key].index(parameter) % len(MARKERS)]
             xs = [p["cost"] for p in points]
-            ys = [max(p["error"], ERROR_FLOOR) for p in points]
+            floor = 0.0 if metric in NO_ANALYTIC_ANSWER else ERROR_FLOOR
+            ys = [max(p["error"], floor) for p in points]
             (line,) = ax.plot(xs, ys, color=colour, marker=marker, linewidth=1, markersize=5, label=label(points[0]))
             warned = [(x, y) for x, y, p in zip(xs, ys, points) if p["solver_warnings"] > 0]
             if warned:
                 ax.scatter(*zip(*warned), s=90, facecolors="none", edgecolors="black", linewidths=1, zorder=3)
             handles.setdefault(label(points[0]), line)
         ax.set_xscale("log")
-        ax.set_yscale("log")
+        ax.set_yscale("linear" if metric in NO_ANALYTIC_ANSWER else "log")  # a time to rest may be 0
         ax.set_title(f"{scene}: {metric.replace('_', ' ')}")
         ax.set_xlabel(f"cost ({cost_kind} s per simulated s)")
-        ax.set_ylabel(f"error ({UNITS.get(metric, '')})")
+        what = "no analytic answer: the figure itself" if metric in NO_ANALYTIC_ANSWER else "error"
+        ax.set_ylabel(f"{what} ({UNITS.get(metric, '')})")
         ax.grid(True, which="major", alpha=0.3)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory & kUtf8Path);
   sweep->add_flag("--quick", sweepOptions.quick, "two steps, one setting per solver, short runs");
   sweep->add_option("--out", sweepOut, "CSV file (default: standard output)")->check(kUtf8Path);
-  std::string sweepPlan, sweepResults = "sweep_runs", sweepMerge, sweepCase, sweepEngine, sweepSolver;
+  std::string sweepPlan, sweepResults = "sweep_runs", sweepMerge, sweepCase, sweepEngine, sweepSolver, sweepParameterName;
   double sweepParameter = 0.0, sweepDt = 0.0;
   CLI::Option* plan = sweep->add_option("--plan", sweepPlan, "write the sweep as a job list to this file; runs nothing")->check(kUtf8Path);
   sweep->add_option("--results", sweepResults, "folder the plan's runs write their rows to")
@@ -119,7 +119,9 @@ int main(int argc, char** argv) {
                              ->excludes(merge);
   sweep->add_option("--engine", sweepEngine, "one run: polysim or ode")->needs(oneCase);
   sweep->add_option("--solver", sweepSolver, "one run: bisection, regula-falsi, worldstep or quickstep")->needs(oneCase);
-  sweep->add_option("--parameter", sweepParameter, "one run: tolerance (m) or iterations")->needs(oneCase);
+  sweep->add_option("--parameter-name", sweepParameterName, "one run: tolerance_m or solver_sweeps (polysim), iterations (quickstep)")
+      ->needs(oneCase);
+  sweep->add_option("--parameter", sweepParameter, "one run: tolerance (m), solver sweeps or iterations")->needs(oneCase);
   sweep->add_option("--dt", sweepDt, "one run: the step (s)")->needs(oneCase);
 
   polysim::sim::ViewOptions viewOptions;
@@ -183,7 +185,7 @@ int main(int argc, char** argv) {
       if (!sweepCase.empty()) {
         if (sweepOut.empty()) throw std::invalid_argument("--out: one run of a plan needs the file its rows go to");
         const polysim::sim::SweepRun one{polysim::sim::standardSweepCase(sweepCase, sweepOptions.quick),
-                                         polysim::sim::sweepSettingFrom(sweepEngine, sweepSolver, sweepParameter, sweepDt)};
+                                         polysim::sim::sweepSettingFrom(sweepEngine, sweepSolver, sweepParameterName, sweepParameter, sweepDt)};
         return polysim::sim::sweepRunCommand(sweepOptions, one, sweepOut, std::cerr);
       }
       return polysim::sim::sweepCommand(sweepOptions, sweepOut, std::cout, isatty(STDERR_FILENO) ? &std::cerr : nullptr);

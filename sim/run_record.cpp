@@ -1,5 +1,6 @@
 #include "sim/run_record.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -31,12 +32,16 @@ RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d
   r.apexAfterFirstContact.assign(r.initial.size(), std::numeric_limits<double>::quiet_NaN());
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = threadCpuSeconds();
+  double lastMoving = 0.0;  // s
+  bool allAtRest = std::all_of(r.initial.begin(), r.initial.end(), [](const BodyState& b) { return b.atRest; });
   for (long k = 0; k < steps; ++k) {
     engine.step(dt);
     r.maxEnergyIncrease = std::max(r.maxEnergyIncrease, engine.energy() - r.initialEnergy);
     r.maxPenetration = std::max(r.maxPenetration, engine.stepPenetration());
+    const std::vector<BodyState> states = engine.bodyStates();
+    allAtRest = std::all_of(states.begin(), states.end(), [](const BodyState& b) { return b.atRest; });
+    if (!allAtRest) lastMoving = static_cast<double>(k + 1) * dt;
     if (engine.firstContactTime()) {
-      const std::vector<BodyState> states = engine.bodyStates();
       for (size_t i = 0; i < states.size(); ++i) {
         const double height = states[i].position.dot(up);
         if (!(r.apexAfterFirstContact[i] >= height)) r.apexAfterFirstContact[i] = height;  // NaN-aware max
@@ -44,6 +49,7 @@ RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d
     }
     if (afterStep) afterStep();
   }
+  if (allAtRest) r.timeToRest = lastMoving;
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.cpuTime = threadCpuSeconds() - cpuStart;
   r.simTime = steps * dt;
@@ -72,6 +78,7 @@ nlohmann::ordered_json summaryToJson(const std::string& sceneName, const RunReco
   summary["energy"] = {{"initial", forOutput(r.initialEnergy)},
                        {"final", forOutput(r.finalEnergy)},
                        {"max_increase", forOutput(r.maxEnergyIncrease)}};
+  summary["time_to_rest"] = r.timeToRest ? nlohmann::ordered_json(forOutput(*r.timeToRest)) : nlohmann::ordered_json(nullptr);
   summary["bodies"] = bodies;
   return summary;
 }

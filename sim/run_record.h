@@ -26,6 +26,10 @@ struct RunRecord {
   /// Per dynamic body: the highest its origin rose along `up` (m) after the first
   /// contact, sampled at step ends; the apex of its first rebound. NaN with no contact.
   std::vector<double> apexAfterFirstContact;
+  /// s: the end of the last step at which some dynamic body was not at rest
+  /// (dynamics::atRest, kRestSpeed), when every body is at rest at the run's end (0 when
+  /// none ever moved); none when some body still moves at the end.
+  std::optional<double> timeToRest;
 
   /// How far dynamic body i's origin ended from where it started, across `up` (m).
   double drift(size_t i) const;

@@ -266,7 +266,7 @@ void readSettings(const json& root, Scene& scene, Problems& problems) {
     return Fields(root[key], key, problems);
   };
   if (std::optional<Fields> contact = object("contact")) {
-    contact->allowOnly({"tolerance", "restitution", "friction"});
+    contact->allowOnly({"tolerance", "restitution", "friction", "solver_sweeps"});
     if (auto t = contact->positive("tolerance")) scene.contact.tolerance = *t;
     if (auto e = contact->number("restitution")) {
       if (*e < 0 || *e > 1) contact->problem("restitution must be in [0, 1]");
@@ -275,6 +275,10 @@ void readSettings(const json& root, Scene& scene, Problems& problems) {
     if (auto mu = contact->number("friction")) {
       if (*mu < 0) contact->problem("friction must not be negative");
       scene.contact.friction = *mu;
+    }
+    if (auto n = contact->integer("solver_sweeps")) {
+      if (*n < 1) contact->problem("solver_sweeps must be at least 1 (got " + std::to_string(*n) + ")");
+      else scene.contact.solverSweeps = *n;
     }
   }
   if (std::optional<Fields> sleep = object("sleep")) {

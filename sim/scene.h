@@ -13,6 +13,7 @@
 #include "collision/polygon_mesh.h"
 #include "collision/tolerances.h"
 #include "dynamics/mass_properties.h"
+#include "dynamics/settings.h"
 #include "dynamics/sleep.h"
 
 namespace polysim::sim {
@@ -29,6 +30,9 @@ struct ContactSettings {
   double tolerance = collision::kDefaultContactTolerance;  // m
   double restitution = 0.0;
   double friction = 0.5;
+  /// Most sweeps of the contact solver in one solve ("solver_sweeps"): fewer trade
+  /// convergence on stacks and piles for cost (the sweep charts it).
+  int solverSweeps = dynamics::kMaxSolverIterations;
 };
 
 struct BodySpec {

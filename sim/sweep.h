@@ -15,7 +15,7 @@ namespace polysim::sim {
 struct SweepSetting {
   std::string engine;         // "polysim" or "ode"
   std::string solver;         // polysim: "bisection" / "regula-falsi"; ode: "worldstep" / "quickstep"
-  std::string parameterName;  // "tolerance_m" (polysim), "iterations" (quickstep), "none" (worldstep)
+  std::string parameterName;  // "tolerance_m" or "solver_sweeps" (polysim), "iterations" (quickstep), "none" (worldstep)
   double parameter = 0.0;     // its value; 0 for "none"
   double dt = 0.0;            // s
 };
@@ -24,7 +24,9 @@ struct SweepSetting {
 /// (m), bounce_apex (m), slide_distance (m), stack_drift (m: the largest horizontal
 /// displacement of any body, analytic 0), max_penetration (m, analytic 0), displacement
 /// (m: the farthest any body ended from its start, analytic 0 for a pyramid that stands),
-/// energy_gain (J: the run's largest rise of energy above its start, analytic 0).
+/// energy_gain (J: the run's largest rise of energy above its start, analytic 0),
+/// time_to_rest (s: RunRecord::timeToRest, the run's length when it never came to rest;
+/// it has no analytic answer: 0 stands in, and the error is the time itself).
 struct SweepCase {
   std::string scene;  // file name in the scenes directory, without ".json"
   double duration;    // s

@@ -62,14 +62,25 @@ std::string firstLineOf(const std::string& path) {
 
 }  // namespace
 
-SweepSetting sweepSettingFrom(const std::string& engine, const std::string& solver, double parameter, double dt) {
+SweepSetting sweepSettingFrom(const std::string& engine, const std::string& solver, const std::string& parameterName,
+                              double parameter, double dt) {
   if (!(dt > 0)) throw std::invalid_argument("--dt: the step must be positive");
+  auto wholeNumber = [](double x) { return x >= 1 && x == static_cast<double>(static_cast<long>(x)); };
   if (engine == "polysim") {
     if (solver != "bisection" && solver != "regula-falsi")
       throw std::invalid_argument("--solver: polysim's solvers are bisection and regula-falsi, not \"" + solver + "\"");
+    if (parameterName == "solver_sweeps") {
+      if (!wholeNumber(parameter)) throw std::invalid_argument("--parameter: polysim's solver sweeps must be a positive whole number");
+      return {engine, solver, parameterName, parameter, dt};
+    }
+    if (!parameterName.empty() && parameterName != "tolerance_m")
+      throw std::invalid_argument("--parameter-name: polysim's are tolerance_m and solver_sweeps, not \"" + parameterName + "\"");
     if (!(parameter > 0)) throw std::invalid_argument("--parameter: polysim's tolerance (m) must be positive");
     return {engine, solver, "tolerance_m", parameter, dt};
   }
+  if (!parameterName.empty() && parameterName != (solver == "worldstep" ? "none" : "iterations"))
+    throw std::invalid_argument("--parameter-name: ODE's " + solver + " takes " + (solver == "worldstep" ? "none" : "iterations") +
+                                ", not \"" + parameterName + "\"");
   if (engine == "ode") {
     if (solver == "worldstep") {
       if (parameter != 0) throw std::invalid_argument("--parameter: ODE's worldstep takes none (give 0)");
@@ -77,7 +88,7 @@ SweepSetting sweepSettingFrom(const std::string& engine, const std::string& solv
     }
     if (solver != "quickstep")
       throw std::invalid_argument("--solver: ODE's solvers are worldstep and quickstep, not \"" + solver + "\"");
-    if (!(parameter >= 1) || parameter != static_cast<double>(static_cast<long>(parameter)))
+    if (!wholeNumber(parameter))
       throw std::invalid_argument("--parameter: quickstep's iterations must be a positive whole number");
     return {engine, solver, "iterations", parameter, dt};
   }
@@ -100,7 +111,7 @@ void writeSweepPlan(const SweepOptions& options, const std::string& resultsDirec
     number << s.parameter << " --dt " << s.dt;
     out << shellWord(binary) << " sweep --scenes " << shellWord(scenes) << (options.quick ? " --quick" : "")
         << " --case " << shellWord(run.sweepCase.scene) << " --engine " << s.engine << " --solver " << s.solver
-        << " --parameter " << number.str() << " --out "
+        << " --parameter-name " << s.parameterName << " --parameter " << number.str() << " --out "
         << shellWord((fs::path(results) / (sweepRunName(run) + ".csv")).string()) << "\n";
   }
 }

@@ -13,11 +13,14 @@
 
 namespace polysim::sim {
 
-/// The setting a planned run's command line names. Throws std::invalid_argument naming
-/// the option at fault: an engine other than polysim / ode, a solver the engine does not
-/// have, a tolerance (polysim) or iteration count (quickstep) that is not positive, a
-/// parameter given to worldstep, a dt that is not positive.
-SweepSetting sweepSettingFrom(const std::string& engine, const std::string& solver, double parameter, double dt);
+/// The setting a planned run's command line names. `parameterName` may be empty for the
+/// engine's usual one (polysim: tolerance_m; its other is solver_sweeps). Throws
+/// std::invalid_argument naming the option at fault: an engine other than polysim / ode, a
+/// solver or parameter name the engine does not have, a tolerance (polysim) that is not
+/// positive, solver sweeps or iterations (quickstep) that are not a positive whole number,
+/// a parameter given to worldstep, a dt that is not positive.
+SweepSetting sweepSettingFrom(const std::string& engine, const std::string& solver, const std::string& parameterName,
+                              double parameter, double dt);
 
 /// Writes the plan: one line per run of the sweep (sweepRuns), each a shell command that
 /// runs `binary` on that run alone and writes its rows to `resultsDirectory`/NAME.csv

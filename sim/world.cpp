@@ -252,7 +252,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
         break;
       }
   }
-  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap).iterations;
+  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps).iterations;
   if (!remember) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;

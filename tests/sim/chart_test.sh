@@ -15,6 +15,8 @@ head -c 8 "$work/chart.png" | grep -q PNG
 grep -q "<svg" "$work/chart.svg"
 grep -q "polysim bisection" "$work/chart.svg"
 grep -q "ode quickstep" "$work/chart.svg"
+grep -q "30 solver sweeps" "$work/chart.svg"
+grep -q "time to rest" "$work/chart.svg"
 
 echo "scene,engine" > "$work/bad.csv"
 if /usr/bin/python3 "$plot" "$work/bad.csv" "$work/bad" 2> "$work/error"; then

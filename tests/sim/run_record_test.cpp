@@ -17,6 +17,7 @@ class ScriptedEngine : public Engine {
   struct State {
     double energy, penetration, height;
     bool touched;
+    bool atRest = false;
   };
   explicit ScriptedEngine(std::vector<State> script) : script_(std::move(script)) {}
 
@@ -29,6 +30,7 @@ class ScriptedEngine : public Engine {
     BodyState b;
     b.name = "box";
     b.position = Eigen::Vector3d(0.25 * k_, 0, script_[k_].height);
+    b.atRest = script_[k_].atRest;
     return {b};
   }
   double energy() const override { return script_[k_].energy; }
@@ -63,6 +65,29 @@ TEST(RunRecord, EnergyThatNeverRisesHasNoIncrease) {
   ScriptedEngine engine({{10, 0, 2, false}, {8, 0, 2, false}, {9.9, 0, 2, false}, {7, 0, 2, false}});
   const RunRecord r = recordRun(engine, 3, 0.5, Eigen::Vector3d::UnitZ());
   EXPECT_EQ(r.maxEnergyIncrease, 0.0);
+}
+
+// The time to rest is the end of the last step that ended with a body moving, once the
+// run ends at rest: a body that stops, moves again and stops counts from its last stop.
+TEST(RunRecord, TimeToRestIsTheEndOfTheLastStepThatEndedMoving) {
+  auto run = [](const std::vector<bool>& rest) {
+    std::vector<ScriptedEngine::State> script;
+    for (bool r : rest) script.push_back({10, 0, 1, true, r});
+    ScriptedEngine engine(script);
+    return recordRun(engine, static_cast<long>(rest.size()) - 1, 0.5, Eigen::Vector3d::UnitZ());
+  };
+  const RunRecord stops = run({false, false, true, false, true, true});
+  ASSERT_TRUE(stops.timeToRest);
+  EXPECT_DOUBLE_EQ(*stops.timeToRest, 1.5);  // step 3 ended moving
+  EXPECT_DOUBLE_EQ(summaryToJson("scripted", stops)["time_to_rest"].get<double>(), 1.5);
+
+  const RunRecord moving = run({false, true, true, false});
+  EXPECT_FALSE(moving.timeToRest);
+  EXPECT_TRUE(summaryToJson("scripted", moving)["time_to_rest"].is_null());
+
+  const RunRecord still = run({true, true, true});
+  ASSERT_TRUE(still.timeToRest);
+  EXPECT_EQ(*still.timeToRest, 0.0);
 }
 
 TEST(RunRecord, SummaryFiguresOfAHandWorkedRun) {

@@ -170,6 +170,22 @@ TEST(Scenarios, RestingScenesNeedFewSolverSweepsPerStep) {
   }
 }
 
+// The scene's solver_sweeps bounds every solve: the 5-box stack's first step starts cold
+// and takes more than 3 sweeps at the default limit; limited to 3, no step of the first
+// second takes more than 3 per solve (a step solves at its start, and at most twice per
+// event: at the contact, and again when a body that landed takes the step's gravity).
+TEST(Scenarios, TheScenesSolverSweepsBoundEverySolve) {
+  Scene limited = scene("stack_5");
+  limited.sleep.enabled = false;
+  World full(limited);
+  EXPECT_GT(full.step(1.0 / 60).solverIterations, 3);
+  limited.contact.solverSweeps = 3;
+  World w(limited);
+  runFor(w, 1.0, [](const StepReport& r) {
+    EXPECT_LE(r.solverIterations, 3 * (1 + 2 * static_cast<int>(r.events.size()))) << "step " << r.step;
+  });
+}
+
 // Twelve copies of the tilted drop, 3 m apart on one floor, each 1 mm higher than the
 // last, so that their landings fall at different times within the same few steps: each
 // is its own island, so each lands and settles exactly as it does alone (no shared event

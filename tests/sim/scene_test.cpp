@@ -144,6 +144,10 @@ INSTANTIATE_TEST_SUITE_P(
                   SceneFiles::withBody(cubeWith(R"([[1,3,2,0],[6,7,5,4],[4,5,1,0],[3,7,6,2],[2,6,4,0],[5,7,3,1]])") +
                                        R"(, "static": true)"),
                   "body \"box\": shape: is inside-out"},
+        Rejection{"sweeps_zero", R"({"contact": {"solver_sweeps": 0}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "contact: solver_sweeps must be at least 1 (got 0)"},
+        Rejection{"sweeps_fraction", R"({"contact": {"solver_sweeps": 2.5}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "contact: solver_sweeps must be an integer"},
         Rejection{"sleep_not_an_object", R"({"sleep": true, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
                   "sleep: must be an object"},
         Rejection{"sleep_negative_speed", R"({"sleep": {"speed": -1}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",

@@ -106,16 +106,24 @@ TEST(SweepPlan, EveryRunOfTheFullSweepHasItsOwnName) {
 }
 
 TEST(SweepPlan, SettingsFromACommandLineAreChecked) {
-  const SweepSetting polysim = sweepSettingFrom("polysim", "regula-falsi", 1e-5, 0.01);
+  const SweepSetting polysim = sweepSettingFrom("polysim", "regula-falsi", "", 1e-5, 0.01);
   EXPECT_EQ(polysim.parameterName, "tolerance_m");
-  EXPECT_EQ(sweepSettingFrom("ode", "quickstep", 20, 0.01).parameterName, "iterations");
-  EXPECT_EQ(sweepSettingFrom("ode", "worldstep", 0, 0.01).parameterName, "none");
-  EXPECT_THROW(sweepSettingFrom("bullet", "bisection", 1e-4, 0.01), std::invalid_argument);
-  EXPECT_THROW(sweepSettingFrom("polysim", "quickstep", 1e-4, 0.01), std::invalid_argument);
-  EXPECT_THROW(sweepSettingFrom("polysim", "bisection", 0, 0.01), std::invalid_argument);
-  EXPECT_THROW(sweepSettingFrom("ode", "quickstep", 2.5, 0.01), std::invalid_argument);
-  EXPECT_THROW(sweepSettingFrom("ode", "worldstep", 3, 0.01), std::invalid_argument);
-  EXPECT_THROW(sweepSettingFrom("ode", "worldstep", 0, 0), std::invalid_argument);
+  EXPECT_EQ(sweepSettingFrom("polysim", "regula-falsi", "tolerance_m", 1e-5, 0.01).parameterName, "tolerance_m");
+  const SweepSetting sweeps = sweepSettingFrom("polysim", "regula-falsi", "solver_sweeps", 20, 0.01);
+  EXPECT_EQ(sweeps.parameterName, "solver_sweeps");
+  EXPECT_EQ(sweeps.parameter, 20);
+  EXPECT_EQ(sweepSettingFrom("ode", "quickstep", "", 20, 0.01).parameterName, "iterations");
+  EXPECT_EQ(sweepSettingFrom("ode", "worldstep", "", 0, 0.01).parameterName, "none");
+  EXPECT_THROW(sweepSettingFrom("bullet", "bisection", "", 1e-4, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("polysim", "quickstep", "", 1e-4, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("polysim", "bisection", "", 0, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("polysim", "bisection", "solver_sweeps", 2.5, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("polysim", "bisection", "solver_sweeps", 0, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("polysim", "bisection", "iterations", 20, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("ode", "quickstep", "tolerance_m", 20, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("ode", "quickstep", "", 2.5, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("ode", "worldstep", "", 3, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("ode", "worldstep", "", 0, 0), std::invalid_argument);
   EXPECT_THROW(standardSweepCase("stack_10", true), std::invalid_argument);  // the quick sweep has stack_5
 }
 

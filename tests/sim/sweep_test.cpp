@@ -45,6 +45,22 @@ TEST(AnalyticReference, RefusesScenesThatAreNotWhatItDerives) {
   EXPECT_THROW(inclineSlideDistance(scene("drop_box"), "box", "ramp", 1.0), std::invalid_argument);
 }
 
+// A box dropped with no restitution stops at its impact; the loop leaves the rest of
+// that step's gravity in its velocity (the contact is solved again at the next step's
+// start), so it is first seen at rest at the end of the step after. Its time to rest is
+// the end of the impact's step: ceil(sqrt(2 h / g) / dt) dt, in both engines' records.
+TEST(Sweep, TimeToRestOfADroppedBoxIsTheEndOfItsImpactsStep) {
+  const double impact = std::sqrt(2 * 1.5 / 9.81);  // bottom face 1.5 m above the ground
+  for (double dt : {1.0 / 60, 1.0 / 240}) {
+    RunOptions options;
+    options.dt = dt;
+    options.duration = 2.0;
+    const nlohmann::ordered_json summary = runScene(scene("drop_box"), options);
+    ASSERT_FALSE(summary["time_to_rest"].is_null()) << dt;
+    EXPECT_NEAR(summary["time_to_rest"].get<double>(), std::ceil(impact / dt) * dt, 1e-9) << dt;
+  }
+}
+
 TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
   const std::vector<SweepRow> rows = runSweep({kScenes, true});
   const double g = 9.81;
@@ -57,12 +73,13 @@ TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
       {"stack_5/stack_drift", 0.0},
       {"stack_5/max_penetration", 0.0},
       {"pyramid/displacement", 0.0},  // a pyramid that stands: every box where it started
-      {"pyramid/energy_gain", 0.0}};  // nothing gives the resting boxes energy
+      {"pyramid/energy_gain", 0.0},    // nothing gives the resting boxes energy
+      {"pyramid/time_to_rest", 0.0}};  // no analytic answer: 0 stands in
   // The energy bound of the busy-scenes issue: every body lifted by one tolerance.
   double weightOfPyramid = 0.0;  // N
   for (const BodySpec& b : scene("pyramid").bodies)
     if (!b.isStatic) weightOfPyramid += b.massProperties().mass * 9.81;
-  std::map<std::string, double> firstContactSeen;
+  std::map<std::string, double> firstContactSeen, timeToRest;
   size_t measures = 0;
   for (const SweepCase& c : standardSweepCases(true)) measures += c.metrics.size();
   const std::vector<SweepSetting> settings = sweepSettings(true);
@@ -79,10 +96,16 @@ TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
     // The measured column is the run's own figure, as `polysim run` reports it.
     if (r.scene == "drop_box" && r.metric == "first_contact_time" && r.setting.dt == 1.0 / 60)
       firstContactSeen[r.setting.engine + "/" + r.setting.solver] = r.measured;
-    seen.insert(r.setting.engine + r.setting.solver + std::to_string(r.setting.dt));
+    seen.insert(r.setting.engine + r.setting.solver + r.setting.parameterName + std::to_string(r.setting.dt));
+    if (r.metric == "time_to_rest") {
+      EXPECT_GE(r.measured, 0.0);
+      EXPECT_LE(r.measured, 1.0);  // the quick pyramid's run
+      timeToRest[sweepRunName({standardSweepCase(r.scene, true), r.setting})] = r.measured;
+    }
     if (r.setting.engine == "polysim") {
       // polysim's answers it can get exactly: where the box rests and how far it overlaps.
-      const double tolerance = r.setting.parameter;  // m, the contact band
+      const double tolerance = r.setting.parameterName == "solver_sweeps" ? scene(r.scene).contact.tolerance
+                                                                            : r.setting.parameter;  // m, the contact band
       if (r.metric == "rest_height" || r.metric == "max_penetration") {
         EXPECT_LE(r.error, tolerance);
       } else if (r.metric == "slide_distance") {  // sliding is supported motion: first order in dt
@@ -111,6 +134,17 @@ TEST(Sweep, QuickSweepHasARowPerSettingAndMeasureWithFiniteFigures) {
               runScene(scene("drop_box"), sixty)["first_contact_time"].get<double>(), 1e-12);
   EXPECT_NEAR(firstContactSeen["ode/quickstep"],
               runOde(scene("drop_box"), sixty)["first_contact_time"].get<double>(), 1e-12);
+  // The time to rest is the summary's, the run's length where that says null (never at rest).
+  sixty.duration = 1.0;
+  for (const auto& [engine, summary] : {std::pair{"polysim", runScene(scene("pyramid"), sixty)},
+                                        std::pair{"ode", runOde(scene("pyramid"), sixty)}}) {
+    const std::string name = std::string("pyramid.") + engine +
+                             (engine == std::string("polysim") ? ".bisection.tolerance_m=0.0001" : ".quickstep.iterations=20") +
+                             ".dt=0.0166667";
+    ASSERT_EQ(timeToRest.count(name), 1u) << name;
+    const nlohmann::ordered_json& t = summary["time_to_rest"];
+    EXPECT_NEAR(timeToRest[name], t.is_null() ? 1.0 : t.get<double>(), 1e-12) << name;
+  }
 
   std::ostringstream csv;
   writeSweepCsv(rows, csv);
