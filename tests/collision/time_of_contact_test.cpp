@@ -42,6 +42,17 @@ class World {
     node.motionBound = sim::kinematicMotionBound(*motions_.back(), *node.mesh);
     return id;
   }
+  // A moving object on its own path: `ctrans` sets its pose at t from `info`; it moves
+  // at most `motionBound` (m) over [0, 1].
+  int addOnPath(const MeshData& mesh, const Eigen::Isometry3d& X, TransformUpdate ctrans, const void* info, double motionBound) {
+    motions_.push_back(nullptr);
+    const int id = db.add("moving" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, false);
+    ObjNode& node = db.objects[id];
+    node.ctrans = ctrans;
+    node.info = info;
+    node.motionBound = motionBound;
+    return id;
+  }
   TocResult detect(TocMethod method) {
     db.setTime(1.0);
     TocOptions options;
@@ -244,12 +255,7 @@ TEST_P(TimeOfContact, BoxRockingOntoItsFaceIsFollowedToTheFaceNotLeftAtItsStart)
     const Eigen::Matrix3d R = Eigen::AngleAxisd(-tilt, V3::UnitY()).toRotationMatrix();
     const V3 lowEdge = R * V3(-0.5, 0, -0.5);
     Pivoting motion{pose(V3(0, 0, resting) - lowEdge, R), V3(0, 0, resting), turn};
-    const int box = w.addStatic(kCube, motion.start);  // made moving below, with its own path
-    ObjNode& node = w.db.objects[box];
-    node.isStatic = false;
-    node.ctrans = pivotPose;
-    node.info = &motion;
-    node.motionBound = std::abs(turn) * std::sqrt(3.0);  // farthest corner from the edge: sqrt 3
+    const int box = w.addOnPath(kCube, motion.start, pivotPose, &motion, std::abs(turn) * std::sqrt(3.0));  // farthest corner: sqrt 3 from the edge
     const TocResult r = w.detect(GetParam());
     ASSERT_EQ(r.status, Status::Contact);
     // The far edge (1 from the pivot along the face) at time t is at resting + sin(tilt - turn t).
