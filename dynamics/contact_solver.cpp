@@ -136,14 +136,20 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
 }
 
 // Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
-// maxSweeps are made: each block's friction rows, then its normal impulses.
+// maxSweeps are made: each block's friction rows, then its normal impulses. Sweeps run
+// in the given order (bottom-up: the first carries a stack's weight down in one pass),
+// then backwards, and so on (symmetric Gauss-Seidel): a load that must shift across a
+// tall structure travels both ways. Every sweep bottom-up, 600 sweeps a step left the
+// 40-high pyramid leaning out of its plane by 5 cm in 3 s; alternating, 2.4 mm.
 SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
                       const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
   SolveStats stats;
   while (stats.iterations < maxSweeps) {
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
-    for (int k : group) {
+    const bool backwards = stats.iterations % 2 == 0;  // the first sweep is forwards
+    for (size_t n = 0; n < group.size(); ++n) {
+      const int k = group[backwards ? group.size() - 1 - n : n];
       stats.rowSolves += static_cast<long>(blocks[k].size());
       for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
       largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplingOf[k]));

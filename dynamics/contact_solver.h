@@ -54,9 +54,10 @@ struct SolveStats {
 /// contacts with zero friction skip all friction work.
 /// Starting from each contact's given impulses (warm start) lets a resting stack carry
 /// its weight from the first sweep; they are clamped to the same limits first.
-/// Contacts that share no moving body (two piles on one floor) are swept apart, each
-/// group until it converges (or reaches `maxSweeps`, kMaxSolverIterations unless the
-/// scene says otherwise) on its own.
+/// Sweeps go through the contacts in their given order and back again in turn (the
+/// step loop gives them bottom-up). Contacts that share no moving body (two piles on one
+/// floor) are swept apart, each group until it converges (or reaches `maxSweeps`,
+/// kMaxSolverIterations unless the scene says otherwise) on its own.
 /// Then the push velocities of the bodies touched are set afresh (split impulses,
 /// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at
 /// (depth - allowedOverlap) / dt or more, no contact's push approaches, and push impulses
