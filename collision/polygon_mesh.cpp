@@ -235,6 +235,7 @@ void PolygonMesh::findSeparatingDirections() {
 
 void PolygonMesh::classifySides() {
   sideConvex_.assign(faceIndices_.size(), 0);
+  faceConvex_.assign(faceCount(), 0);
   for (int f = 0; f < faceCount(); ++f) {
     const int* ids = faceVertices(f);
     const Eigen::Vector3d& n = planes_[f].normal;
@@ -244,6 +245,7 @@ void PolygonMesh::classifySides() {
       const Eigen::Vector3d side = (vertices_[ids[(i + 1) % size]] - vertices_[ids[i]]).cross(n).normalized();
       const Eigen::Vector3d& across = planes_[e.face0 == f ? e.face1 : e.face0].normal;
       sideConvex_[faceStart_[f] + i] = side.dot(across) > kFlatEdgeAngle;
+      faceConvex_[f] = faceConvex_[f] || sideConvex_[faceStart_[f] + i];
     }
   }
 }

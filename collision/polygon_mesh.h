@@ -67,6 +67,9 @@ class PolygonMesh {
   /// turns away from f's side by more than kFlatEdgeAngle (a box's edges, a cup's rim).
   /// Reflex creases, flat edges and open boundaries are not. A rigid motion keeps it.
   bool sideIsConvexCrease(int f, int i) const { return sideConvex_[faceStart_[f] + i] != 0; }
+  /// The same for every side of face f, one flag per side; and whether any is set.
+  const char* convexCreaseSides(int f) const { return sideConvex_.data() + faceStart_[f]; }
+  bool hasConvexCrease(int f) const { return faceConvex_[f] != 0; }
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
   bool closed() const { return closed_; }
   /// True when the mesh bounds a convex solid: closed, connected, and every pair of
@@ -104,7 +107,7 @@ class PolygonMesh {
   bool foldsOutward() const;  // closed mesh: no edge folds inward
   void findSeparatingDirections();
   void findMirroredHalf();
-  void classifySides();       // fills sideConvex_ from the planes and edges
+  void classifySides();       // fills sideConvex_ and faceConvex_ from the planes and edges
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<int> faceStart_;    // CSR offsets into faceIndices_, size faceCount()+1
@@ -118,6 +121,7 @@ class PolygonMesh {
   std::vector<Eigen::Vector3d> edgeOutward_;
   std::vector<char> edgeFlat_;
   std::vector<char> sideConvex_;  // parallel to faceIndices_
+  std::vector<char> faceConvex_;  // per face: some side is a convex crease
   Eigen::AlignedBox3d bounds_;
   bool closed_ = false;
   bool convex_ = false;

@@ -18,7 +18,7 @@ struct PolygonView {
   const int* vertexIds = nullptr;                // mesh vertex of each corner
   const int* edgeIds = nullptr;                  // mesh edge of each side
   const char* edgeFlat = nullptr;                // side i is a flat internal edge (no boundary)
-  const char* convexSide = nullptr;              // side i is a convex crease (PolygonMesh::sideIsConvexCrease)
+  const char* convexSide = nullptr;              // side i is a convex crease (PolygonMesh::convexCreaseSides)
   bool anyConvexSide = false;                    // some side is (a floor's triangle has none)
   int size = 0;
   Plane plane;                                   // world, normal out of the object

@@ -23,7 +23,6 @@ void WorldFaces::reset(const ObjNode& object) {
   outward_.clear();
   sideNormals_.clear();
   flat_.clear();
-  convexSide_.clear();
   vertexIds_.clear();
   edgeIds_.clear();
 }
@@ -36,7 +35,6 @@ const WorldFaces::Entry& WorldFaces::entry(int f) {
   const Eigen::Isometry3d& X = object_->X_WO;
   e.first = static_cast<int>(vertices_.size());
   e.box.setEmpty();
-  e.anyConvexSide = false;
   const int* ids = mesh.faceVertices(f);
   for (int i = 0; i < mesh.faceSize(f); ++i) {
     vertices_.push_back(X * mesh.vertices()[ids[i]]);
@@ -44,8 +42,6 @@ const WorldFaces::Entry& WorldFaces::entry(int f) {
     const int edge = mesh.faceEdge(f, i);
     outward_.push_back(X.linear() * mesh.edgeOutward(edge));
     flat_.push_back(mesh.edgeIsFlat(edge));
-    convexSide_.push_back(mesh.sideIsConvexCrease(f, i));
-    e.anyConvexSide = e.anyConvexSide || convexSide_.back();
     vertexIds_.push_back(ids[i]);
     edgeIds_.push_back(edge);
   }
@@ -69,8 +65,8 @@ PolygonView WorldFaces::view(int f) {
   v.vertexIds = vertexIds_.data() + e.first;
   v.edgeIds = edgeIds_.data() + e.first;
   v.edgeFlat = flat_.data() + e.first;
-  v.convexSide = convexSide_.data() + e.first;
-  v.anyConvexSide = e.anyConvexSide;
+  v.convexSide = object_->mesh->convexCreaseSides(f);  // the same in any pose
+  v.anyConvexSide = object_->mesh->hasConvexCrease(f);
   v.size = object_->mesh->faceSize(f);
   v.plane = e.plane;
   v.faceId = f;

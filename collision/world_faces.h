@@ -30,7 +30,6 @@ class WorldFaces {
     Eigen::AlignedBox3d box;
     Plane plane;
     int first = 0;  // into vertices_ and outward_
-    bool anyConvexSide = false;
   };
   const Entry& entry(int f);
 
@@ -41,7 +40,7 @@ class WorldFaces {
   std::vector<std::uint32_t> stamp_;
   std::vector<Entry> entries_;
   std::vector<Eigen::Vector3d> vertices_, outward_, sideNormals_;
-  std::vector<char> flat_, convexSide_;
+  std::vector<char> flat_;
   std::vector<int> vertexIds_, edgeIds_;
 };
 

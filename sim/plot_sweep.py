@@ -78,13 +78,14 @@ def plot(rows, out):
     columns = min(3, len(panels))
     lines_of_panels = (len(panels) + columns - 1) // columns
     fig, axes = plt.subplots(lines_of_panels, columns, figsize=(5.2 * columns, 4.2 * lines_of_panels), squeeze=False)
-    parameters = defaultdict(list)  # per (engine, solver): its parameter values, for the markers
+    parameters = defaultdict(list)  # per series key: its parameter values, for the markers
     for r in rows:
         key = series_key(r)
         if r["parameter"] not in parameters[key]:
             parameters[key].append(r["parameter"])
     handles = {}
     for ax, (scene, metric) in zip(axes.flat, panels):
+        no_answer = metric in NO_ANALYTIC_ANSWER
         series = defaultdict(list)
         for r in rows:
             if (r["scene"], r["metric"]) == (scene, metric):
@@ -94,18 +95,17 @@ def plot(rows, out):
             colour = COLOURS.get(key, "black")
             marker = MARKERS[parameters[key].index(parameter) % len(MARKERS)]
             xs = [p["cost"] for p in points]
-            floor = 0.0 if metric in NO_ANALYTIC_ANSWER else ERROR_FLOOR
-            ys = [max(p["error"], floor) for p in points]
+            ys = [max(p["error"], 0.0 if no_answer else ERROR_FLOOR) for p in points]
             (line,) = ax.plot(xs, ys, color=colour, marker=marker, linewidth=1, markersize=5, label=label(points[0]))
             warned = [(x, y) for x, y, p in zip(xs, ys, points) if p["solver_warnings"] > 0]
             if warned:
                 ax.scatter(*zip(*warned), s=90, facecolors="none", edgecolors="black", linewidths=1, zorder=3)
             handles.setdefault(label(points[0]), line)
         ax.set_xscale("log")
-        ax.set_yscale("linear" if metric in NO_ANALYTIC_ANSWER else "log")  # a time to rest may be 0
+        ax.set_yscale("linear" if no_answer else "log")  # a time to rest may be 0
         ax.set_title(f"{scene}: {metric.replace('_', ' ')}")
         ax.set_xlabel(f"cost ({cost_kind} s per simulated s)")
-        what = "no analytic answer: the figure itself" if metric in NO_ANALYTIC_ANSWER else "error"
+        what = "no analytic answer: the figure itself" if no_answer else "error"
         ax.set_ylabel(f"{what} ({UNITS.get(metric, '')})")
         ax.grid(True, which="major", alpha=0.3)
     for ax in list(axes.flat)[len(panels):]:

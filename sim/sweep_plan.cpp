@@ -78,16 +78,19 @@ SweepSetting sweepSettingFrom(const std::string& engine, const std::string& solv
     if (!(parameter > 0)) throw std::invalid_argument("--parameter: polysim's tolerance (m) must be positive");
     return {engine, solver, "tolerance_m", parameter, dt};
   }
-  if (!parameterName.empty() && parameterName != (solver == "worldstep" ? "none" : "iterations"))
-    throw std::invalid_argument("--parameter-name: ODE's " + solver + " takes " + (solver == "worldstep" ? "none" : "iterations") +
-                                ", not \"" + parameterName + "\"");
   if (engine == "ode") {
+    auto checkName = [&](const char* own) {
+      if (!parameterName.empty() && parameterName != own)
+        throw std::invalid_argument("--parameter-name: ODE's " + solver + " takes " + own + ", not \"" + parameterName + "\"");
+    };
     if (solver == "worldstep") {
+      checkName("none");
       if (parameter != 0) throw std::invalid_argument("--parameter: ODE's worldstep takes none (give 0)");
       return {engine, solver, "none", 0.0, dt};
     }
     if (solver != "quickstep")
       throw std::invalid_argument("--solver: ODE's solvers are worldstep and quickstep, not \"" + solver + "\"");
+    checkName("iterations");
     if (!wholeNumber(parameter))
       throw std::invalid_argument("--parameter: quickstep's iterations must be a positive whole number");
     return {engine, solver, "iterations", parameter, dt};

@@ -71,6 +71,17 @@ TEST(PolygonMesh, ConvexCreasesAreTheSidesWhereTheSurfaceFoldsOutward) {
   const PolygonMesh floor(makeTriangulatedFloor(2, 2, 2));
   for (int f = 0; f < floor.faceCount(); ++f)
     for (int i = 0; i < floor.faceSize(f); ++i) EXPECT_FALSE(floor.sideIsConvexCrease(f, i)) << f << " " << i;
+
+  // The per-face flags are the same classification.
+  for (const PolygonMesh* mesh : {&box, &cup, &floor})
+    for (int f = 0; f < mesh->faceCount(); ++f) {
+      bool any = false;
+      for (int i = 0; i < mesh->faceSize(f); ++i) {
+        EXPECT_EQ(mesh->convexCreaseSides(f)[i] != 0, mesh->sideIsConvexCrease(f, i));
+        any = any || mesh->sideIsConvexCrease(f, i);
+      }
+      EXPECT_EQ(mesh->hasConvexCrease(f), any) << "face " << f;
+    }
 }
 
 TEST(PolygonMesh, RejectsEachKindOfBadFace) {

@@ -30,22 +30,17 @@ class World {
  public:
   explicit World(double eps = kEps) { db.tolerance = eps; }
   int addStatic(const MeshData& mesh, const Eigen::Isometry3d& X) {
-    motions_.push_back(nullptr);
     return db.add("static" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, true);
   }
   int addMoving(const MeshData& mesh, const Eigen::Isometry3d& X, const V3& v, const V3& w = V3::Zero()) {
     motions_.push_back(std::make_unique<KinematicMotion>(KinematicMotion{X, v, w, 1.0}));
-    const int id = db.add("moving" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, false);
-    ObjNode& node = db.objects[id];
-    node.ctrans = sim::kinematicPose;
-    node.info = motions_.back().get();
-    node.motionBound = sim::kinematicMotionBound(*motions_.back(), *node.mesh);
+    const int id = addOnPath(mesh, X, sim::kinematicPose, motions_.back().get(), 0.0);
+    db.objects[id].motionBound = sim::kinematicMotionBound(*motions_.back(), *db.objects[id].mesh);
     return id;
   }
   // A moving object on its own path: `ctrans` sets its pose at t from `info`; it moves
   // at most `motionBound` (m) over [0, 1].
   int addOnPath(const MeshData& mesh, const Eigen::Isometry3d& X, TransformUpdate ctrans, const void* info, double motionBound) {
-    motions_.push_back(nullptr);
     const int id = db.add("moving" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, false);
     ObjNode& node = db.objects[id];
     node.ctrans = ctrans;

@@ -121,6 +121,13 @@ TEST(SweepPlan, SettingsFromACommandLineAreChecked) {
   EXPECT_THROW(sweepSettingFrom("polysim", "bisection", "solver_sweeps", 0, 0.01), std::invalid_argument);
   EXPECT_THROW(sweepSettingFrom("polysim", "bisection", "iterations", 20, 0.01), std::invalid_argument);
   EXPECT_THROW(sweepSettingFrom("ode", "quickstep", "tolerance_m", 20, 0.01), std::invalid_argument);
+  EXPECT_THROW(sweepSettingFrom("ode", "worldstep", "iterations", 0, 0.01), std::invalid_argument);
+  try {  // the engine is what is wrong, whatever the parameter's name
+    sweepSettingFrom("bullet", "quickstep", "iterations", 20, 0.01);
+    ADD_FAILURE() << "an unknown engine was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("--engine", 0), 0u) << e.what();
+  }
   EXPECT_THROW(sweepSettingFrom("ode", "quickstep", "", 2.5, 0.01), std::invalid_argument);
   EXPECT_THROW(sweepSettingFrom("ode", "worldstep", "", 3, 0.01), std::invalid_argument);
   EXPECT_THROW(sweepSettingFrom("ode", "worldstep", "", 0, 0), std::invalid_argument);
