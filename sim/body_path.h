@@ -1,11 +1,11 @@
 #pragma once
 // The bridge from dynamics to collision: a body's path over a sub-step as the seed's
-// ctrans update function, and contacts turned into the dynamics' plain contact points.
+// ctrans update function (contacts go the other way in contact_points.h).
 
 #include <vector>
 
-#include "collision/contact.h"
-#include "dynamics/contact_solver.h"
+#include <Eigen/Geometry>
+
 #include "dynamics/rigid_body.h"
 
 namespace polysim::sim {
@@ -25,17 +25,5 @@ void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO);
 /// push velocities.
 double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration,
                        const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
-
-/// Material of a pair of bodies: the larger restitution, the geometric mean of frictions.
-struct PairMaterial {
-  double restitution = 0.0;
-  double friction = 0.0;
-};
-
-/// The contact points of one pair of bodies (a, b: body indices): every vertex of an
-/// area's polygon, both ends of a line, a point; each with the contact's normal and its
-/// own gap.
-void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
-                         std::vector<dynamics::ContactPoint>& out);
 
 }  // namespace polysim::sim

@@ -9,6 +9,7 @@
 #include "collision/time_of_contact.h"
 #include "dynamics/rigid_body.h"
 #include "sim/body_path.h"
+#include "sim/contact_points.h"
 #include "sim/scene.h"
 
 namespace polysim::sim {
