@@ -31,6 +31,11 @@ inline constexpr double kPushVelocityTolerance = 1e-9;
 /// coefficient. Far above double round-off, far below any physical impulse ratio.
 inline constexpr double kLcpRoundOff = 1e-9;
 
+/// Relative round-off allowed when the solver checks that a solve did not raise the
+/// bodies' kinetic energy (contact_solver.cpp): far below any physical gain, far above
+/// the round-off of summing a pile's energies.
+inline constexpr double kEnergyRoundOff = 1e-9;
+
 /// Approach speeds (m/s) below this do not bounce: restitution applies only above it, so
 /// a resting body is not kicked by the speed gravity gives it in one step (g dt is
 /// 0.04 m/s at 240 Hz and 0.16 m/s at 60 Hz).
