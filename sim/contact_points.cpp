@@ -92,8 +92,11 @@ void appendContactPoints(int a, int b, const std::vector<collision::Contact>& co
     std::vector<PlanePoint> points;
     for (const collision::Contact* c : group)
       for (size_t i = 0; i < c->points.size(); ++i) points.push_back({t1.dot(c->points[i]), t2.dot(c->points[i]), c->points[i], c->gapAt(i)});
+    // A contact on its own is already its polygon's corners (or a segment, or a point), in
+    // the detector's order, which the sweeps' order follows: it goes as it is.
+    if (group.size() > 1) points = hullCorners(std::move(points));
     const int manifold = static_cast<int>(out.size());  // unique: the index of its first point
-    for (const PlanePoint& p : hullCorners(std::move(points)))
+    for (const PlanePoint& p : points)
       out.push_back({a, b, p.x, n, p.gap, material.restitution, material.friction, manifold, turnWithA});
   }
 }

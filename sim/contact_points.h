@@ -32,7 +32,10 @@ inline constexpr double kCoplanarContactAngle = 1e-3;
 /// line, a point), each with its own gap. The hull's corners bound every normal force and
 /// torque the group's points could give, so nothing a contact can hold is lost; points
 /// inside it, and copies of one point, are dropped. A group takes the normal of its
-/// deepest contact.
+/// deepest contact. A contact alone in its plane goes as the detector gave it (its
+/// polygon's corners in order): the sweeps follow the points' order, and a pyramid of
+/// 820 boxes at the sweep limit moved 16 mm in 10 s with its corners re-ordered, 4.1 mm
+/// without.
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
                          std::vector<dynamics::ContactPoint>& out);
 

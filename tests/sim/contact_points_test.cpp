@@ -112,7 +112,7 @@ TEST(ContactPoints, TheManifoldIsTheHullOfTheGroupsPoints) {
     const Vector3d n = X.linear() * Vector3d::UnitZ();
     std::vector<Contact> contacts;
     std::vector<Vector3d> all;
-    const int count = 1 + trial % 5;
+    const int count = 2 + trial % 4;
     for (int c = 0; c < count; ++c) {
       const int size = 1 + static_cast<int>(random() % 5);
       std::vector<Vector3d> points;
@@ -150,6 +150,25 @@ TEST(ContactPoints, TheManifoldIsTheHullOfTheGroupsPoints) {
       const Vector3d& p = out[i].point;
       const Vector3d& q = out[(i + 1) % out.size()].point;
       for (const Vector3d& x : all) EXPECT_GE((q - p).cross(x - p).dot(n), -1e-9 * (q - p).norm());
+    }
+  }
+}
+
+// A contact alone in its plane goes as the detector gave it: its points in their order,
+// each with its gap.
+TEST(ContactPoints, AContactAloneInItsPlaneKeepsItsPointsAndTheirOrder) {
+  const std::vector<Vector3d> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<double> gaps = {-1e-5, 2e-5, -3e-5, 4e-5};
+  for (int first = 0; first < 4; ++first) {
+    std::vector<Vector3d> points;
+    std::vector<double> pointGaps;
+    for (int k = 0; k < 4; ++k) points.push_back(square[(first + k) % 4]), pointGaps.push_back(gaps[(first + k) % 4]);
+    const std::vector<dynamics::ContactPoint> out = pointsOf({contactOf(ContactType::Area, Vector3d::UnitZ(), points, pointGaps),
+                                                             contactOf(ContactType::Point, Vector3d::UnitX(), {{2, 0, 0.5}}, {0})});
+    ASSERT_EQ(out.size(), 5u);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(out[k].point, points[k]);
+      EXPECT_EQ(out[k].separation, pointGaps[k]);
     }
   }
 }
