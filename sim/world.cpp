@@ -167,6 +167,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
     if (++events == kMaxEventsPerStep) {                     // the island's clock stops (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
+      if (remaining == dt) stopTouchingBodies(contacts);     // it did not move at all
       break;
     }
     // No progress at all: the solver's contacts approach nowhere, yet the detector finds
@@ -206,6 +207,16 @@ bool World::bounces(const collision::PairResult& pair) const {
       if (c.normal.dot(bodies_[pair.a].velocityAt(x) - bodies_[pair.b].velocityAt(x)) < -dynamics::kBounceThreshold)
         return true;
   return false;
+}
+
+void World::stopTouchingBodies(const std::vector<collision::PairResult>& contacts) {
+  for (const collision::PairResult& p : contacts)
+    for (int i : {p.a, p.b}) {
+      dynamics::RigidBody& b = bodies_[i];
+      if (b.isStatic) continue;
+      b.velocity.setZero(), b.angularVelocity.setZero();
+      b.pushVelocity.setZero(), b.pushAngularVelocity.setZero();
+    }
 }
 
 bool World::supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration) {

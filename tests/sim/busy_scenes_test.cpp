@@ -152,20 +152,26 @@ TEST(BusyScenes, ColumnOfCupsPlacedAtRestStaysThere) {
     EXPECT_LT((w.bodies()[i].position - scene.bodies[i].position).norm(), 1e-3) << scene.bodies[i].name;
 }
 
-// A column of 20 frictionless cups: it stands for 7 s, sways, and falls apart at 13 s;
+// Columns of 20 frictionless cups. Seed 1 stands for 7 s, sways, and falls apart at 13 s;
 // cups slide off each other's rims and wedge in each other's mouths while turning fast.
 // There the gap-curvature targets once asked a wedged cup for 21 m/s of separation a
 // step; its island could not move, so it spun faster and was asked for more, and the
-// column gained 9,000 J (5e14 J with the rim's pieces merged) by 20 s.
+// column gained 9,000 J (5e14 J with the rim's pieces merged) by 20 s. Seed 2 stalls at
+// the event bound from 2.2 s, every event at the step's start: its cups kept each step's
+// gravity in their speed without falling and gained 1,774 J in 4 s (196 kJ in 20 s).
+// Not asserted: that the column never stalls (seed 2 still does).
 TEST(BusyScenes, FrictionlessColumnOfCupsKeepsTheEnergyBound) {
-  Scene scene = generated("cups", 20);
-  scene.contact.friction = 0.0;
-  for (BodySpec& b : scene.bodies) b.friction.reset();
-  World w(scene);
-  const Watched seen = run(w, 20.0);
-  EXPECT_TRUE(seen.finite);
-  EXPECT_LE(seen.energyRise, energyBound(w));
-  EXPECT_LE(seen.deepest, w.scene().contact.tolerance);
+  for (const auto& [seed, seconds] : {std::pair{1ull, 20.0}, std::pair{2ull, 4.0}}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Scene scene = generated("cups", 20, seed);
+    scene.contact.friction = 0.0;
+    for (BodySpec& b : scene.bodies) b.friction.reset();
+    World w(scene);
+    const Watched seen = run(w, seconds);
+    EXPECT_TRUE(seen.finite);
+    EXPECT_LE(seen.energyRise, energyBound(w));
+    EXPECT_LE(seen.deepest, w.scene().contact.tolerance);
+  }
 }
 
 // 40 unit boxes resting on each other at dt 1/60 (the minute the issue asks for is
