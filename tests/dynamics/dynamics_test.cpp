@@ -136,26 +136,46 @@ TEST(ContactSolver, InelasticHeadOnCollisionKeepsMomentum) {
   EXPECT_NEAR(1.0 * bodies[0].velocity.x() + 3.0 * bodies[1].velocity.x(), 4.0, 1e-9);
 }
 
+// Two unit boxes of 1 to 2 kg at random poses, moving at up to 3 m/s and turning at up to
+// `spin` rad/s about each axis; the second is static in every third trial.
+std::vector<RigidBody> randomPair(std::mt19937& rng, int trial, double spin) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<RigidBody> bodies = {unitBox(1 + u(rng) * 0.5 + 0.5), unitBox(1 + u(rng) * 0.5 + 0.5)};
+  if (trial % 3 == 0) bodies[1] = RigidBody::fixed();
+  for (RigidBody& b : bodies) {
+    if (b.isStatic) continue;
+    b.position = V3(u(rng), u(rng), u(rng));
+    b.orientation = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
+    b.velocity = 3 * V3(u(rng), u(rng), u(rng));
+    b.angularVelocity = spin * V3(u(rng), u(rng), u(rng));
+  }
+  return bodies;
+}
+
+// A contact plane: a random normal through a random point, and two tangents.
+struct Plane {
+  V3 normal, centre, t1, t2;
+};
+Plane randomPlane(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Plane p;
+  p.normal = V3(u(rng), u(rng), u(rng)).normalized();
+  p.centre = V3(u(rng), u(rng), u(rng));
+  p.t1 = p.normal.unitOrthogonal();
+  p.t2 = p.normal.cross(p.t1);
+  return p;
+}
+
 TEST(ContactSolver, KineticEnergyNeverIncreasesOnRandomContacts) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   int changed = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    std::vector<RigidBody> bodies = {unitBox(1 + u(rng) * 0.5 + 0.5), unitBox(1 + u(rng) * 0.5 + 0.5)};
-    if (trial % 3 == 0) bodies[1] = RigidBody::fixed();
-    for (RigidBody& b : bodies) {
-      if (b.isStatic) continue;
-      b.position = V3(u(rng), u(rng), u(rng));
-      b.orientation = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
-      b.velocity = 3 * V3(u(rng), u(rng), u(rng));
-      b.angularVelocity = 3 * V3(u(rng), u(rng), u(rng));
-    }
-    // One contact plane (a random normal through a random point), with 1 to 4 points on
-    // it, as a face, an edge or a vertex of one body touching the other would give.
+    std::vector<RigidBody> bodies = randomPair(rng, trial, 3.0);
+    // One contact plane with 1 to 4 points on it, as a face, an edge or a vertex of one
+    // body touching the other would give.
     std::vector<ContactPoint> contacts;
-    const V3 normal = V3(u(rng), u(rng), u(rng)).normalized();
-    const V3 centre(u(rng), u(rng), u(rng));
-    const V3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+    const auto [normal, centre, t1, t2] = randomPlane(rng);
     const double e = 0.5 * (u(rng) + 1), mu = 0.5 * (u(rng) + 1);
     const int n = 1 + trial % 4;
     for (int k = 0; k < n; ++k)
@@ -178,19 +198,9 @@ TEST(ContactSolver, KineticEnergyNeverIncreasesWhenTurningBodiesCurveTheirGapsCl
   std::uniform_real_distribution<double> u(-1, 1);
   int curved = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    std::vector<RigidBody> bodies = {unitBox(1 + 0.5 * (u(rng) + 1)), unitBox(1 + 0.5 * (u(rng) + 1))};
-    if (trial % 3 == 0) bodies[1] = RigidBody::fixed();
-    for (RigidBody& b : bodies) {
-      if (b.isStatic) continue;
-      b.position = V3(u(rng), u(rng), u(rng));
-      b.orientation = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
-      b.velocity = 3 * V3(u(rng), u(rng), u(rng));
-      b.angularVelocity = 50 * V3(u(rng), u(rng), u(rng));
-    }
+    std::vector<RigidBody> bodies = randomPair(rng, trial, 50.0);
     std::vector<ContactPoint> contacts;
-    const V3 normal = V3(u(rng), u(rng), u(rng)).normalized();
-    const V3 centre(u(rng), u(rng), u(rng));
-    const V3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+    const auto [normal, centre, t1, t2] = randomPlane(rng);
     const double mu = trial % 2 == 0 ? 0.0 : 0.5 * (u(rng) + 1);
     const double turnWithA = 0.5 * (trial % 3);
     for (int k = 0; k < 1 + trial % 4; ++k) {
