@@ -21,11 +21,6 @@ double turn(const PlanePoint& o, const PlanePoint& p, const PlanePoint& q) {
   return (p.u - o.u) * (q.v - o.v) - (p.v - o.v) * (q.u - o.u);
 }
 
-// Points closer than this (m) in the plane are one point; three points whose triangle
-// is thinner than this times its base are on a line. Far below the contact tolerance,
-// far above round-off on metre-sized bodies.
-constexpr double kSamePoint = 1e-9;
-
 // The corners of the convex hull of `points` (Andrew's monotone chain), counter-clockwise;
 // of coincident points, the one with the smallest gap. Collinear points give their two
 // ends; a single point, itself.
@@ -35,7 +30,7 @@ std::vector<PlanePoint> hullCorners(std::vector<PlanePoint> points) {
   });
   std::vector<PlanePoint> unique;
   for (const PlanePoint& p : points) {
-    if (!unique.empty() && std::hypot(p.u - unique.back().u, p.v - unique.back().v) <= kSamePoint) {
+    if (!unique.empty() && std::hypot(p.u - unique.back().u, p.v - unique.back().v) <= kSameContactPoint) {
       if (p.gap < unique.back().gap) unique.back() = p;
       continue;
     }
@@ -47,7 +42,7 @@ std::vector<PlanePoint> hullCorners(std::vector<PlanePoint> points) {
   auto keepsTurningLeft = [&](const PlanePoint& q, size_t floor) {
     while (k >= floor) {
       const double base = std::hypot(hull[k - 1].u - hull[k - 2].u, hull[k - 1].v - hull[k - 2].v);
-      if (turn(hull[k - 2], hull[k - 1], q) > kSamePoint * base) break;
+      if (turn(hull[k - 2], hull[k - 1], q) > kSameContactPoint * base) break;
       --k;
     }
   };

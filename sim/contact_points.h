@@ -26,6 +26,11 @@ struct PairMaterial {
 /// or a cup's wall and rim, lie far outside 1e-3.
 inline constexpr double kCoplanarContactAngle = 1e-3;
 
+/// Points of one manifold closer than this (m) in its plane are one point; three whose
+/// triangle is thinner than this are on a line. Far below the contact tolerance, far
+/// above round-off on metre-sized bodies.
+inline constexpr double kSameContactPoint = 1e-9;
+
 /// The contact points of one pair of bodies (a, b: body indices). The pair's contacts
 /// are grouped by normal (kCoplanarContactAngle); each group is one manifold: the corners
 /// of the convex hull of its points in its plane (every vertex of an area, both ends of a
