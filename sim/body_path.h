@@ -2,8 +2,6 @@
 // The bridge from dynamics to collision: a body's path over a sub-step as the seed's
 // ctrans update function (contacts go the other way in contact_points.h).
 
-#include <vector>
-
 #include <Eigen/Geometry>
 
 #include "dynamics/rigid_body.h"
