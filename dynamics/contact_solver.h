@@ -28,16 +28,20 @@ struct ContactPoint {
   /// b; 0.5: between two edges, or two faces together.
   double normalTurnWithA = 0.5;
   /// In: the impulses to start from (warm start, e.g. last step's for the same point);
-  /// out: the accumulated impulses solved (N s). Friction along (t1, t2), t1 =
-  /// normal.unitOrthogonal(), t2 = normal x t1.
+  /// out: the accumulated impulses solved (N s). Friction is a world vector in the
+  /// contact plane (a given one is projected onto it), not coordinates in the solver's
+  /// tangent axes: those axes may swing by any angle between steps when the normal tilts
+  /// slightly off a world axis, and a warm start in them would push the wrong way.
   double normalImpulse = 0.0;
-  Eigen::Vector2d frictionImpulse = Eigen::Vector2d::Zero();
+  Eigen::Vector3d frictionImpulse = Eigen::Vector3d::Zero();
 };
 
 struct SolveStats {
   int iterations = 0;        // sweeps made (by the group of contacts that took the most)
   bool converged = false;    // every group stopped on kSolverVelocityTolerance, not the sweep limit
   long rowSolves = 0;        // contact points solved, summed over all sweeps: the sweeps' work
+  int shockSweeps = 0;       // shock propagation's sweeps, summed over its levels (0 if converged)
+  long shockRowSolves = 0;   // and its work, as rowSolves
 };
 
 /// Changes the bodies' velocities so that no contact approaches: every contact ends with
@@ -58,6 +62,12 @@ struct SolveStats {
 /// step loop gives them bottom-up). Contacts that share no moving body (two piles on one
 /// floor) are swept apart, each group until it converges (or reaches `maxSweeps`,
 /// kMaxSolverIterations unless the scene says otherwise) on its own.
+/// Kinetic energy never rises in the compression solve: where the sweeps end with more
+/// than the bodies had (a warm start larger than the step needs, not taken back within
+/// `maxSweeps`), the solve starts again from zero impulses with no target above zero.
+/// Where the sweeps stop at `maxSweeps`, shock propagation (shock_propagation.h) solves
+/// again from the ground up, each level against the ones below held fixed; its result is
+/// kept only if it raised no kinetic energy.
 /// Then the push velocities of the bodies touched are set afresh (split impulses,
 /// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at
 /// (depth - allowedOverlap) / dt or more, no contact's push approaches, and push impulses

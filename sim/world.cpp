@@ -168,6 +168,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     if (++events == kMaxEventsPerStep) {                     // the island's clock stops (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
       if (remaining == dt) stopTouchingBodies(contacts);     // it did not move at all
+      else takeBackUnflownGravity(island, remaining);
       break;
     }
     // No progress at all: the solver's contacts approach nowhere, yet the detector finds
@@ -217,6 +218,18 @@ void World::stopTouchingBodies(const std::vector<collision::PairResult>& contact
       b.velocity.setZero(), b.angularVelocity.setZero();
       b.pushVelocity.setZero(), b.pushAngularVelocity.setZero();
     }
+}
+
+void World::takeBackUnflownGravity(const std::vector<int>& island, double unflown) {
+  const double g = scene_.gravity.norm();
+  if (g == 0.0) return;
+  const Eigen::Vector3d down = scene_.gravity / g;
+  for (int i : island) {
+    dynamics::RigidBody& b = bodies_[i];
+    if (b.isStatic || free_[i]) continue;
+    const double falling = b.velocity.dot(down);
+    b.velocity -= std::min(g * unflown, std::max(0.0, falling)) * down;
+  }
 }
 
 bool World::supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration) {

@@ -1,0 +1,48 @@
+#pragma once
+// The contact solver's sweeps (sequential impulses over prepared rows), shared by the
+// main solve (contact_solver.cpp) and shock propagation (shock_propagation.h). Internal
+// to the solver.
+
+#include <vector>
+
+#include "dynamics/contact_row.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/small_lcp.h"
+
+namespace polysim::dynamics::solver {
+
+/// The bodies the rows touch, each once (static ones excluded), in the rows' order.
+std::vector<RigidBody*> movingBodies(const std::vector<Row>& rows);
+
+/// Their kinetic energy (J).
+double kineticEnergy(const std::vector<RigidBody*>& bodies);
+
+/// Sets the row's three axes and their effective masses from its bodies, frames and
+/// arms: a body marked static (or with zero inverse mass and frame) takes no impulse.
+void prepareAxes(Row& r);
+
+/// The rows of one solve, laid out for sweeping: the blocks (an area's corners or a
+/// line's ends, solved together by small_lcp.h; any other point alone), each block's
+/// coupling matrix, and the groups of blocks that share no moving body. Built once per
+/// solve: the poses and rows' axes do not change while it sweeps.
+class ContactSweeps {
+ public:
+  /// `bodyCount`: the size of the body array the rows' sources index.
+  ContactSweeps(const std::vector<Row>& rows, int bodyCount);
+
+  /// Sweeps each group until no impulse changes by kSolverVelocityTolerance (m/s over the
+  /// lighter body's mass) or `maxSweeps` are made: each block's friction rows, then its
+  /// normal impulses. Sweeps run in the rows' order (bottom-up: the first carries a
+  /// stack's weight down in one pass), then backwards, and so on (symmetric
+  /// Gauss-Seidel). `iterations` is the most sweeps any group took; `converged`, whether
+  /// every group stopped on the tolerance.
+  SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
+
+ private:
+  std::vector<std::vector<int>> blocks_;
+  std::vector<SmallLcp> couplings_;             // one per block of several rows
+  std::vector<const SmallLcp*> couplingOf_;     // per block: its matrix, or null for one row
+  std::vector<std::vector<int>> groups_;        // block indices, in the rows' order
+};
+
+}  // namespace polysim::dynamics::solver

@@ -1,0 +1,90 @@
+#include "dynamics/shock_propagation.h"
+
+#include <algorithm>
+#include <deque>
+#include <unordered_map>
+
+#include "dynamics/contact_sweeps.h"
+
+namespace polysim::dynamics::solver {
+namespace {
+
+constexpr int kUnranked = -1;
+
+// Each body's level: 0 for a static body in the rows, 1 + the lowest level among its
+// contacts' other bodies for a moving one (breadth first), kUnranked if no static body
+// is reached. Rows with restitution do not link.
+std::vector<int> levelsOf(const std::vector<Row>& rows, int bodyCount) {
+  std::vector<std::vector<int>> neighbours(static_cast<size_t>(bodyCount));
+  std::vector<int> level(static_cast<size_t>(bodyCount), kUnranked);
+  std::deque<int> queue;
+  for (const Row& r : rows) {
+    if (r.restitution > 0) continue;
+    const int a = r.source->a, b = r.source->b;
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+    for (const auto& [i, body] : {std::pair{a, r.a}, std::pair{b, r.b}})
+      if (body->isStatic && level[i] == kUnranked) level[i] = 0, queue.push_back(i);
+  }
+  while (!queue.empty()) {
+    const int i = queue.front();
+    queue.pop_front();
+    for (int j : neighbours[i])
+      if (level[j] == kUnranked) level[j] = level[i] + 1, queue.push_back(j);
+  }
+  return level;
+}
+
+}  // namespace
+
+SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps) {
+  const std::vector<int> level = levelsOf(rows, bodyCount);
+  // The rows of each level: those whose higher body is on it.
+  std::vector<std::vector<int>> rowsOfLevel;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const Row& r = rows[k];
+    const int la = level[r.source->a], lb = level[r.source->b];
+    if (r.restitution > 0 || la == kUnranked || lb == kUnranked) continue;
+    const size_t top = static_cast<size_t>(std::max(la, lb));
+    if (rowsOfLevel.size() <= top) rowsOfLevel.resize(top + 1);
+    rowsOfLevel[top].push_back(static_cast<int>(k));
+  }
+  SolveStats stats;
+  for (size_t L = 1; L < rowsOfLevel.size(); ++L) {
+    const std::vector<int>& picked = rowsOfLevel[L];
+    if (picked.empty()) continue;
+    // A lower body, held fixed: a copy marked static, with its velocities as they are
+    // now (the levels below it already solved).
+    std::deque<RigidBody> fixed;  // stable addresses
+    std::unordered_map<int, RigidBody*> fixedOf;
+    auto heldFixed = [&](int i, RigidBody* body) {
+      const auto [at, fresh] = fixedOf.try_emplace(i, nullptr);
+      if (fresh) {
+        RigidBody& copy = fixed.emplace_back(*body);
+        copy.isStatic = true;
+        copy.inverseMass = 0.0;
+        at->second = &copy;
+      }
+      return at->second;
+    };
+    std::vector<Row> sub;
+    sub.reserve(picked.size());
+    for (int k : picked) {
+      Row r = rows[k];
+      if (!r.a->isStatic && level[r.source->a] < static_cast<int>(L)) r.a = heldFixed(r.source->a, r.a);
+      if (!r.b->isStatic && level[r.source->b] < static_cast<int>(L)) r.b = heldFixed(r.source->b, r.b);
+      prepareAxes(r);
+      sub.push_back(r);
+    }
+    const SolveStats swept = ContactSweeps(sub, bodyCount).run(sub, maxSweeps);
+    stats.iterations += swept.iterations;
+    stats.rowSolves += swept.rowSolves;
+    for (size_t i = 0; i < picked.size(); ++i) {
+      rows[picked[i]].normalImpulse = sub[i].normalImpulse;
+      rows[picked[i]].frictionImpulse = sub[i].frictionImpulse;
+    }
+  }
+  return stats;
+}
+
+}  // namespace polysim::dynamics::solver
