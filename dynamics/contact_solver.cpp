@@ -176,8 +176,9 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   };
   sweep();
   // A solve that ends with more kinetic energy than it began with starts again from zero
-  // impulses and with no target above zero, where sequential impulses only take energy
-  // away. It gains two ways. A target above zero (a gap curving closed faster than the
+  // impulses and with no target above zero, where sequential impulses take energy away
+  // (frictionless, each update lowers a convex energy; friction's two axes are solved as
+  // if uncoupled, so with friction nearly). It gains two ways. A target above zero (a gap curving closed faster than the
   // bodies approach) asks for separation the turning bodies' own motion must pay for: a
   // cup wedged on a spinning neighbour was asked for 21 m/s of separation a step, spun
   // faster, and was asked for more (5e14 J in 20 s). And a warm start may push harder
