@@ -63,6 +63,7 @@ void rowsOfStep(const LogFields& step, const LogQuery& q, std::vector<ordered_js
   row["penetration"] = figure("penetration");
   row["energy"] = figure("energy");
   row["solver_iterations"] = figure("solver_iterations");
+  row["shock_sweeps"] = figure("shock_sweeps");
   row["islands"] = step.has("island_events") ? ordered_json(step.array("island_events").size()) : ordered_json(nullptr);
   row["island_events"] = figure("island_events");
   row["sleeping"] = figure("sleeping");

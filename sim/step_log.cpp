@@ -46,6 +46,7 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report, 
   line["energy"] = forOutput(world.energy());
   line["penetration"] = forOutput(report.penetration);
   line["solver_iterations"] = report.solverIterations;
+  line["shock_sweeps"] = report.shockSweeps;
   if (withContacts) line["contacts"] = pairsToJson(world.contacts(), names);
   return line;
 }

@@ -276,7 +276,9 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
         break;
       }
   }
-  report_.solverIterations += dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps).iterations;
+  const dynamics::SolveStats solved = dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps);
+  report_.solverIterations += solved.iterations;
+  report_.shockSweeps += solved.shockSweeps;
   if (!remember) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;

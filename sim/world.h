@@ -58,7 +58,8 @@ struct StepReport {
   std::vector<IslandReport> islands;  // in the order they stepped
   bool eventLimitHit = false;
   double penetration = 0.0;  // m, deepest overlap among the committed states
-  int solverIterations = 0;
+  int solverIterations = 0;  // the contact solver's sweeps, summed over the step's solves
+  int shockSweeps = 0;       // and shock propagation's (dynamics/shock_propagation.h)
   std::vector<int> fellAsleep, woke;  // body indices that fell asleep / woke in this step
   int sleeping = 0;                   // bodies asleep at the step's end
 };

@@ -57,7 +57,7 @@ TEST(StepLog, EveryLineHoldsSpecFieldsAndTheLogAgreesWithTheSummary) {
   for (size_t k = 0; k < run.lines.size(); ++k) {
     const json& line = run.lines[k];
     EXPECT_EQ(line["step"].get<long>(), static_cast<long>(k + 1));
-    for (const char* key : {"t", "events", "bodies", "energy", "penetration", "solver_iterations"})
+    for (const char* key : {"t", "events", "bodies", "energy", "penetration", "solver_iterations", "shock_sweeps"})
       ASSERT_TRUE(line.contains(key)) << "step " << k + 1 << " has no " << key;
     deepest = std::max(deepest, line["penetration"].get<double>());
     for (const json& e : line["events"]) {
@@ -84,6 +84,23 @@ TEST(StepLog, EveryLineHoldsSpecFieldsAndTheLogAgreesWithTheSummary) {
   EXPECT_EQ(run.summary["bodies"][0]["position"], run.lines.back()["bodies"][0]["position"]);
 }
 
+// `shock_sweeps` counts shock propagation's sweeps: every step of a 10-box stack whose
+// solver may sweep 3 times (it stops at that limit, and the pass runs), none once the
+// stack rests warm-started at the default limit (its sweeps converge).
+TEST(StepLog, ShockSweepsAreCountedWhereTheSweepsStopAtTheirLimit) {
+  auto lastSteps = [](int solverSweeps) {
+    Scene scene = loadScene(std::string(POLYSIM_SCENES_DIR) + "/stack_10.json");
+    scene.sleep.enabled = false;
+    scene.contact.solverSweeps = solverSweeps;
+    World w(scene);
+    std::vector<int> shock;
+    for (int k = 0; k < 60; ++k) shock.push_back(w.step(scene.dt).shockSweeps);
+    return std::vector<int>(shock.end() - 10, shock.end());
+  };
+  for (int sweeps : lastSteps(3)) EXPECT_GT(sweeps, 0);
+  for (int sweeps : lastSteps(dynamics::kMaxSolverIterations)) EXPECT_EQ(sweeps, 0);
+}
+
 TEST(StepLog, PolysimLogShowsEveryStepFieldAsWritten) {
   const LoggedRun& run = tiltedDrop();
   LogQuery query;
@@ -102,6 +119,7 @@ TEST(StepLog, PolysimLogShowsEveryStepFieldAsWritten) {
     EXPECT_EQ(row["penetration"], line["penetration"]);
     EXPECT_EQ(row["energy"], line["energy"]);
     EXPECT_EQ(row["solver_iterations"], line["solver_iterations"]);
+    EXPECT_EQ(row["shock_sweeps"], line["shock_sweeps"]);
     EXPECT_EQ(row["position"], line["bodies"][0]["position"]);
     EXPECT_EQ(row["velocity"], line["bodies"][0]["velocity"]);
   }
@@ -224,6 +242,7 @@ TEST(StepLog, PolysimLogShowsAMissingFigureAsNull) {
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_TRUE(rows[0]["penetration"].is_null());
   EXPECT_TRUE(rows[0]["solver_iterations"].is_null());
+  EXPECT_TRUE(rows[0]["shock_sweeps"].is_null());
   EXPECT_EQ(rows[0]["energy"].get<double>(), 2.5);
 }
 
