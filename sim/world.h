@@ -22,6 +22,8 @@ namespace polysim::sim {
 /// the bound. An island whose every event fell at the step's start did not move at all:
 /// its bodies that touch something stop (World::stopTouchingBodies), or the gravity they
 /// were given for the step stays in their speed without their falling, every such step.
+/// One that moved part way gives back the gravity for the rest
+/// (World::takeBackUnflownGravity).
 inline constexpr int kMaxEventsPerStep = 8;
 
 /// An event that makes no progress (collisionDetect() returns the very state it started
