@@ -62,9 +62,11 @@ struct SolveStats {
 /// step loop gives them bottom-up). Contacts that share no moving body (two piles on one
 /// floor) are swept apart, each group until it converges (or reaches `maxSweeps`,
 /// kMaxSolverIterations unless the scene says otherwise) on its own.
-/// Kinetic energy never rises in the compression solve: where the sweeps end with more
-/// than the bodies had (a warm start larger than the step needs, not taken back within
-/// `maxSweeps`), the solve starts again from zero impulses with no target above zero.
+/// The compression solve is kept from adding kinetic energy: where the sweeps end with
+/// more than the bodies had (a warm start larger than the step needs, not taken back
+/// within `maxSweeps`), the solve starts again from zero impulses with no target above
+/// zero, which frictionless cannot gain (with friction, whose two axes are solved as if
+/// uncoupled, a solve stopped within a few sweeps may still gain a little).
 /// Where the sweeps stop at `maxSweeps`, shock propagation (shock_propagation.h) solves
 /// again from the ground up, each level against the ones below held fixed; its result is
 /// kept only if it raised no kinetic energy.
