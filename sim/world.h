@@ -119,6 +119,11 @@ class World {
   /// The pair has restitution and some contact point approaches faster than
   /// kBounceThreshold: the solve will bounce it.
   bool bounces(const collision::PairResult& pair) const;
+  /// What the solver is given for `touching` (the contacts within the tolerance): with
+  /// the speculative contacts of settled bodies (speculative_contacts.h) found in `db`
+  /// (objects mapped to bodies by `bodyOf`, empty: the same).
+  std::vector<collision::PairResult> solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
+                                                    const std::vector<collision::PairResult>& touching);
   /// Solves `contacts` over `horizon` seconds; contacts overlapping deeper than
   /// `allowedOverlap` (m) are pushed apart (contact_solver.h). `remember`: keep the result
   /// as the forces the next solves warm-start from.
@@ -159,6 +164,7 @@ class World {
   std::vector<collision::PairResult> contacts_;
   std::vector<double> slowFor_;  // per body: how long it has been slow (s), dynamics/sleep.h
   std::vector<char> asleep_;     // per body
+  std::vector<char> still_;      // per body: at rest at the step's start (atRest)
   /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
   /// pairs from the step they fell asleep. Only the step-start solve is kept:
   /// an event's solve is mostly a collision impulse over what remains of the step, and

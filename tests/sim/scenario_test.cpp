@@ -186,8 +186,8 @@ TEST(Scenarios, TheScenesSolverSweepsBoundEverySolve) {
   });
 }
 
-// Twelve copies of the tilted drop, 3 m apart on one floor, each 1 mm higher than the
-// last, so that their landings fall at different times within the same few steps: each
+// Twelve copies of the tilted drop, 3 m apart on one floor, each 0.1 mm higher than the
+// last, so that their landings fall at different times within the same step: each
 // is its own island, so each lands and settles exactly as it does alone (no shared event
 // bound, no backing up for another box's landing).
 TEST(Scenarios, IndependentDropsEachMoveAsTheyWouldAlone) {
@@ -203,7 +203,7 @@ TEST(Scenarios, IndependentDropsEachMoveAsTheyWouldAlone) {
   std::vector<V3> offsets;
   for (double x : {-4.5, -1.5, 1.5, 4.5})
     for (double y : {-3.0, 0.0, 3.0}) {
-      offsets.emplace_back(x, y, 0.001 * static_cast<double>(offsets.size()));
+      offsets.emplace_back(x, y, 1e-4 * static_cast<double>(offsets.size()));
       BodySpec b = lone.bodies[box];
       b.name = "box_" + std::to_string(offsets.size());
       b.position += offsets.back();
