@@ -180,10 +180,12 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
                                                 : -kStalledGapFraction * db_.tolerance;
     // A stalled event is solved on the detector's own contacts, which it disagrees with.
-    const std::vector<collision::PairResult> solved = elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : contacts;
-    resolveContacts(solved, remaining, false, allowedOverlap);    // impulses at the contact
-    if (supportTouchingBodies(contacts, remaining))               // bodies that landed take the rest of the step's gravity,
-      resolveContacts(solved, remaining, false, allowedOverlap);  // after their impact, and their contacts carry it
+    std::vector<collision::PairResult> solved = elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : contacts;
+    resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
+    if (supportTouchingBodies(contacts, remaining)) {           // bodies that landed take the rest of the step's gravity,
+      if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),
+      resolveContacts(solved, remaining, false, allowedOverlap);            // after their impact
+    }
   }
   contactsAfter.insert(contactsAfter.end(), contacts.begin(), contacts.end());
 }
