@@ -266,7 +266,7 @@ void readSettings(const json& root, Scene& scene, Problems& problems) {
     return Fields(root[key], key, problems);
   };
   if (std::optional<Fields> contact = object("contact")) {
-    contact->allowOnly({"tolerance", "restitution", "friction", "solver_sweeps"});
+    contact->allowOnly({"tolerance", "restitution", "friction", "solver_sweeps", "speculative_reach"});
     if (auto t = contact->positive("tolerance")) scene.contact.tolerance = *t;
     if (auto e = contact->number("restitution")) {
       if (*e < 0 || *e > 1) contact->problem("restitution must be in [0, 1]");
@@ -279,6 +279,12 @@ void readSettings(const json& root, Scene& scene, Problems& problems) {
     if (auto n = contact->integer("solver_sweeps")) {
       if (*n < 1) contact->problem("solver_sweeps must be at least 1 (got " + std::to_string(*n) + ")");
       else scene.contact.solverSweeps = *n;
+    }
+    if (auto reach = contact->number("speculative_reach")) {
+      if (*reach < 0) contact->problem("speculative_reach must not be negative (0 turns speculative contacts off)");
+      else if (*reach > 0 && *reach < scene.contact.tolerance)
+        contact->problem("speculative_reach must be 0 or at least the tolerance (" + json(scene.contact.tolerance).dump() + " m)");
+      else scene.contact.speculativeReach = *reach;
     }
   }
   if (std::optional<Fields> sleep = object("sleep")) {

@@ -15,6 +15,7 @@
 #include "dynamics/mass_properties.h"
 #include "dynamics/settings.h"
 #include "dynamics/sleep.h"
+#include "sim/speculative_contacts.h"
 
 namespace polysim::sim {
 
@@ -33,6 +34,10 @@ struct ContactSettings {
   /// Most sweeps of the contact solver in one solve ("solver_sweeps"): fewer trade
   /// convergence on stacks and piles for cost (the sweep charts it).
   int solverSweeps = dynamics::kMaxSolverIterations;
+  /// How far apart (m) features of settled convex bodies may be and still go to the
+  /// solver as speculative contacts ("speculative_reach", sim/speculative_contacts.h);
+  /// 0: none, every new touch backs the island up to just contact.
+  double speculativeReach = kSpeculativeReach;
 };
 
 struct BodySpec {

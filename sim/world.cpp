@@ -221,7 +221,8 @@ std::vector<collision::PairResult> World::solverContacts(const collision::Object
       return SpeculativeRole::Left;
     return bodies_[i].isStatic || still_[i] ? SpeculativeRole::Still : SpeculativeRole::Moving;
   };
-  return withSpeculativeContacts(db, workspace_, kSpeculativeReach, bodyOf, touching, roleOf,
+  if (scene_.contact.speculativeReach <= 0.0) return touching;
+  return withSpeculativeContacts(db, workspace_, scene_.contact.speculativeReach, bodyOf, touching, roleOf,
                                  [this](const collision::PairResult& p) { return !bounces(p); });
 }
 
