@@ -173,7 +173,6 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     stats.iterations = std::max(stats.iterations, swept.iterations);
     stats.converged = swept.converged;
     stats.rowSolves += swept.rowSolves;
-    stats.lastChange = swept.lastChange;
   };
   sweep();
   // A solve that ends with more kinetic energy than it began with starts again from zero
@@ -190,7 +189,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     for (Row& r : rows) r.target = std::min(r.target, 0.0), r.normalImpulse = 0.0, r.frictionImpulse.setZero();
     sweep();
   }
-  if (!stats.converged && stats.lastChange > kShockThreshold) {
+  if (!stats.converged) {
     const SavedVelocities swept(moving);
     const double energySwept = kineticEnergy(moving);
     const std::vector<std::pair<double, Eigen::Vector2d>> impulses = impulsesOf(rows);

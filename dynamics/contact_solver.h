@@ -40,7 +40,6 @@ struct SolveStats {
   int iterations = 0;        // sweeps made (by the group of contacts that took the most)
   bool converged = false;    // every group stopped on kSolverVelocityTolerance, not the sweep limit
   long rowSolves = 0;        // contact points solved, summed over all sweeps: the sweeps' work
-  double lastChange = 0.0;   // m/s: the largest impulse change of the last sweep (over the groups)
   int shockSweeps = 0;       // shock propagation's sweeps, summed over its levels (0 if converged)
   long shockRowSolves = 0;   // and its work, as rowSolves
 };
@@ -68,8 +67,8 @@ struct SolveStats {
 /// within `maxSweeps`), the solve starts again from zero impulses with no target above
 /// zero, which frictionless cannot gain (with friction, whose two axes are solved as if
 /// uncoupled, a solve stopped within a few sweeps may still gain a little).
-/// Where the sweeps stop at `maxSweeps` with an impulse still changing by more than
-/// kShockThreshold, shock propagation (shock_propagation.h) solves again from the ground up, each level against the ones below held fixed; its result is
+/// Where the sweeps stop at `maxSweeps`, shock propagation (shock_propagation.h) solves
+/// again from the ground up, each level against the ones below held fixed; its result is
 /// kept only if it raised no kinetic energy.
 /// Then the push velocities of the bodies touched are set afresh (split impulses,
 /// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at

@@ -162,7 +162,6 @@ SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>
       for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
       largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplingOf[k]));
     }
-    stats.lastChange = largestChange;
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;
       break;
@@ -187,7 +186,6 @@ SolveStats ContactSweeps::run(std::vector<Row>& rows, int maxSweeps) const {
     stats.iterations = std::max(stats.iterations, swept.iterations);
     stats.converged = stats.converged && swept.converged;
     stats.rowSolves += swept.rowSolves;
-    stats.lastChange = std::max(stats.lastChange, swept.lastChange);
   }
   return stats;
 }

@@ -17,17 +17,6 @@ inline constexpr int kMaxSolverIterations = 100;
 /// of this order, so it is set where 60 s of rest drift less than a micrometre.
 inline constexpr double kSolverVelocityTolerance = 1e-12;
 
-/// Shock propagation (shock_propagation.h) runs only where the sweeps stopped at their
-/// limit with some impulse still changing by more than this (m/s over the lighter body's
-/// mass). What it is for changes by far more: a dropped column of cups still changed by
-/// 1e-3 m/s after 600 sweeps, a swaying stack of 12 by 0.15 m/s. A resting pyramid of
-/// 210, warm-started from the step before, stops at its limit too, its change falling
-/// from 4e-3 to 5e-7 m/s over its first 30 steps, and groups of two corners trade
-/// round-off of 2e-12 m/s for good; the next step's sweeps carry on from there. Running
-/// the pass on every such solve cost the pyramid 0.85 s of CPU for 10 s (0.54 s with
-/// this threshold; 0.58 s at 1e-7, which also changed the columns of cups).
-inline constexpr double kShockThreshold = 1e-8;
-
 /// How deep (as a fraction of the contact tolerance) a contact may overlap before the
 /// solver pushes it back. Deeper contacts are pushed back to this depth over the time to
 /// the next detection by split impulses (rigid_body.h), which move poses without adding
