@@ -128,6 +128,15 @@ std::vector<Row> prepareRows(std::vector<RigidBody>& bodies, std::vector<Contact
   return rows;
 }
 
+// The rows' accumulated impulses applied to the bodies.
+void applyImpulses(std::vector<Row>& rows) {
+  for (Row& r : rows) {
+    applyAlong(r, r.normalAxis, r.normalImpulse);
+    applyAlong(r, r.tangentAxis1, r.frictionImpulse.x());
+    applyAlong(r, r.tangentAxis2, r.frictionImpulse.y());
+  }
+}
+
 // Warm start: each row's given impulses, clamped to their limits, applied to the bodies.
 // The given friction is a world vector (contact_solver.h), projected on the row's axes.
 void warmStart(std::vector<Row>& rows) {
@@ -139,10 +148,8 @@ void warmStart(std::vector<Row>& rows) {
       const double limit = r.friction * r.normalImpulse;
       if (r.frictionImpulse.norm() > limit) r.frictionImpulse *= limit / r.frictionImpulse.norm();
     }
-    applyAlong(r, r.normalAxis, r.normalImpulse);
-    applyAlong(r, r.tangentAxis1, r.frictionImpulse.x());
-    applyAlong(r, r.tangentAxis2, r.frictionImpulse.y());
   }
+  applyImpulses(rows);
 }
 
 // The rows' accumulated impulses, to go back to.
@@ -196,9 +203,20 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     const SolveStats shock = propagateShock(rows, bodyCount, maxSweeps);
     stats.shockSweeps = shock.iterations;
     stats.shockRowSolves = shock.rowSolves;
-    if (gainedEnergy(energySwept)) {  // a level pushed by a body below it moving up
-      swept.restore();
-      for (size_t k = 0; k < rows.size(); ++k) std::tie(rows[k].normalImpulse, rows[k].frictionImpulse) = impulses[k];
+    // A level pushed by a body below it moving up gains energy. Its impulses, found with
+    // the levels below held fixed, are still a far better guess than where the sweeps
+    // stopped: the sweeps start again from them, every body free (momentum conserved
+    // again), and that is kept unless it ends above the solve's starting energy. Going
+    // back to the sweeps' result instead left a quarter of a settling pile's solves with
+    // a contact approaching over 1 mm/s faster than its target, each a back-up to come.
+    if (gainedEnergy(energySwept)) {
+      start.restore();
+      applyImpulses(rows);
+      sweep();
+      if (gainedEnergy(energySwept)) {
+        swept.restore();
+        for (size_t k = 0; k < rows.size(); ++k) std::tie(rows[k].normalImpulse, rows[k].frictionImpulse) = impulses[k];
+      }
     }
   }
   applyRestitution(rows, energyBefore);
