@@ -203,17 +203,17 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     const SolveStats shock = propagateShock(rows, bodyCount, maxSweeps);
     stats.shockSweeps = shock.iterations;
     stats.shockRowSolves = shock.rowSolves;
-    // A level pushed by a body below it moving up gains energy. Its impulses, found with
-    // the levels below held fixed, are still a far better guess than where the sweeps
-    // stopped: the sweeps start again from them, every body free (momentum conserved
-    // again), and that is kept unless it ends above the solve's starting energy. Going
-    // back to the sweeps' result instead left a quarter of a settling pile's solves with
+    // A pass that gains energy (a level pushed by a body below it moving up) is not
+    // thrown away: its impulses, found with the levels below held fixed, are still a far
+    // better guess than where the sweeps stopped. The sweeps start again from them, every
+    // body free (momentum conserved again), and that is kept unless it ends above the
+    // sweeps' own energy. Thrown away, it left a quarter of a settling pile's solves with
     // a contact approaching over 1 mm/s faster than its target, each a back-up to come.
-    if (gainedEnergy(energySwept)) {
+    if (gainedEnergy(energySwept)) {  // the pass gained energy
       start.restore();
       applyImpulses(rows);
       sweep();
-      if (gainedEnergy(energySwept)) {
+      if (gainedEnergy(energySwept)) {  // and so did the sweeps from it
         swept.restore();
         for (size_t k = 0; k < rows.size(); ++k) std::tie(rows[k].normalImpulse, rows[k].frictionImpulse) = impulses[k];
       }

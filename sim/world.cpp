@@ -209,6 +209,7 @@ collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
 
 std::vector<collision::PairResult> World::solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                          const std::vector<collision::PairResult>& touching) {
+  if (scene_.contact.speculativeReach <= 0.0) return touching;
   // Bodies flying free keep their exact parabolas and impacts (backed up to just
   // contact), and so do pairs that bounce; a sleeping body is moved by no solve. Only
   // convex bodies: in a band as wide as the reach, the creases of a cup in a cup are
@@ -221,7 +222,6 @@ std::vector<collision::PairResult> World::solverContacts(const collision::Object
       return SpeculativeRole::Left;
     return bodies_[i].isStatic || still_[i] ? SpeculativeRole::Still : SpeculativeRole::Moving;
   };
-  if (scene_.contact.speculativeReach <= 0.0) return touching;
   return withSpeculativeContacts(db, workspace_, scene_.contact.speculativeReach, bodyOf, touching, roleOf,
                                  [this](const collision::PairResult& p) { return !bounces(p); });
 }
