@@ -87,5 +87,35 @@ TEST(ContactReduction, AgreeingPiecesKeepTheirMeanNormal) {
   EXPECT_TRUE(test::near(reduced[0].normal, V3(std::sin(tilt / 2), 0, std::cos(tilt / 2)), 1e-12));
 }
 
+// The same edge on the same face found by two polygon pairs at different depths (a
+// vertex 30 um off the face by one, the edge 80 um into it by the other): the joined
+// line takes, at each end, the deepest gap along its normal, whichever piece came first.
+// With the first piece's gaps the solver would not see the overlap that the next
+// intersection test finds too deep.
+TEST(ContactReduction, AJoinedLineTakesTheDeepestGapAtEachEnd) {
+  const PolygonMesh box(makeBox(V3(1, 1, 1)));
+  const int edgeA = edgeBetween(box, V3(1, 0, 0), V3(0, 0, -1));
+  const int topB = faceWithNormal(box, V3(0, 0, 1));
+  Contact shallow = line(V3(0, 0, 1), {Feature::Kind::Edge, edgeA}, {Feature::Kind::Face, topB});
+  shallow.gaps = {3e-5, 3e-5};
+  shallow.separation = 3e-5;
+  Contact deep = shallow;
+  deep.gaps = {-8e-5, -6e-5};
+  deep.separation = -8e-5;
+  const PairGeometry geometry{&box, &box, Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity()};
+  for (bool deepFirst : {false, true}) {
+    SCOPED_TRACE(deepFirst ? "deep piece first" : "shallow piece first");
+    const std::vector<Contact> pieces = deepFirst ? std::vector<Contact>{deep, shallow} : std::vector<Contact>{shallow, deep};
+    const std::vector<Contact> reduced = reduceContacts(pieces, 1e-4, &geometry);
+    ASSERT_EQ(reduced.size(), 1u);
+    ASSERT_EQ(reduced[0].points.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+      const double expected = reduced[0].points[i].y() < 0 ? -8e-5 : -6e-5;
+      EXPECT_DOUBLE_EQ(reduced[0].gapAt(i), expected) << "end " << i;
+    }
+    EXPECT_DOUBLE_EQ(reduced[0].separation, -8e-5);
+  }
+}
+
 }  // namespace
 }  // namespace polysim::collision
