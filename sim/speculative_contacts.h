@@ -20,8 +20,8 @@ namespace polysim::sim {
 /// settling is caught (a box turning at 2 rad/s sweeps its corner 3 cm in a step of
 /// 1/60 s); but a gap that wide may also be a feature the body would pass by (a ghost
 /// contact, which stops it short), and the pyramids' boxes stand 5 cm apart. Measured on
-/// a tilted pile of 343 boxes over 2 s: 0.5 cm cut the contact events by 30%, 2 cm by
-/// 38%, 5 cm by 33%.
+/// the first 2 s of a tilted pile of 343 boxes, one build: 1,923 contact events at 2 cm,
+/// 2,347 at 5 cm, 2,930 at 10 cm (6,278 without, in an earlier one).
 inline constexpr double kSpeculativeReach = 0.02;
 
 /// What an object of the database is to the speculative test.
