@@ -124,12 +124,22 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
     // In a static-moving pair the moving object is `a`, so that the normal points from
     // the ground (or wall) towards what rests on it.
     const bool flip = db.objects[a].isStatic;
-    PairResult pair = testObjectPair(db, flip ? b : a, flip ? a : b, ws, options, &result.polygonPairsTested);
+    const int first = flip ? b : a, second = flip ? a : b;
+    std::optional<PairResult> reused = ws.reuse.find(db, first, second);
+    if (reused) {
+      ++result.pairsReused;
+      if (!options.contacts) reused->contacts.clear();
+    } else {
+      reused = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested);
+      if (options.contacts) ws.reuse.keep(db, *reused);
+    }
+    PairResult& pair = *reused;
     if (pair.status == Status::Separate) continue;
     result.status = std::max(result.status, pair.status);
     result.pairs.push_back(std::move(pair));
-    if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) return result;
+    if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) break;
   }
+  ws.reuse.endQuery();
   return result;
 }
 

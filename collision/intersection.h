@@ -7,6 +7,7 @@
 #include "collision/area_on_patch.h"
 #include "collision/broadphase.h"
 #include "collision/contact.h"
+#include "collision/contact_reuse.h"
 #include "collision/object.h"
 #include "collision/polygon_tests.h"
 
@@ -30,6 +31,8 @@ struct IntersectionResult {
   std::vector<PairResult> pairs;
   /// Polygon pairs that reached the polygon-level test: the work the broad steps left.
   long polygonPairsTested = 0;
+  /// Pairs whose contacts were reused rather than tested (contact_reuse.h).
+  int pairsReused = 0;
 };
 
 /// Reusable scratch memory of the test (per-object world faces, candidate lists), so that
@@ -44,12 +47,17 @@ struct IntersectionWorkspace {
   PolygonScratch scratch;
   AreaCover cover;
   AreaOnPatch patch;
+  /// Pairs in contact kept from earlier tests; off unless enabled (contact_reuse.h).
+  ContactReuse reuse;
 };
 
 /// Tests every pair of objects of the database at their current transforms (static pairs
 /// excepted; pairs whose containers are apart are skipped by a sweep and prune) with the database's tolerance: separate, contact (within tolerance; touching
 /// counts) or interpenetrating (a feature more than the tolerance inside the other; for
 /// two convex objects with separating axes, their penetration depth more than it).
+/// With the workspace's contact reuse enabled, a pair in contact that has hardly moved
+/// since its last full test keeps that test's contacts (to within
+/// kContactReuseFraction of the tolerance).
 IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& workspace,
                                      const IntersectionOptions& options = {});
 IntersectionResult test4Intersection(const ObjectDatabase& db, const IntersectionOptions& options = {});

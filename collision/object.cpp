@@ -13,6 +13,7 @@ int ObjectDatabase::add(std::string name, std::shared_ptr<const PolygonMesh> mes
   node.mesh = std::move(mesh);
   node.X_WO = X_WO;
   node.isStatic = isStatic;
+  node.id = static_cast<int>(objects.size());
   objects.push_back(std::move(node));
   return static_cast<int>(objects.size()) - 1;
 }

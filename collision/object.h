@@ -32,6 +32,10 @@ struct ObjNode {
   double motionBound = 0.0;
   /// The object's least thickness (m; see thickness.h), computed when it is added.
   double thickness = 0.0;
+  /// Its index in the database it was added to; copies into other databases (an
+  /// island's) keep it, so that contact reuse (contact_reuse.h) knows the object again.
+  /// -1 for an object not added with ObjectDatabase::add: never reused.
+  int id = -1;
 };
 
 /// The object database: the objects and the contact tolerance they are judged with.

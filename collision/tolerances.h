@@ -56,6 +56,15 @@ inline constexpr double kCoverRoundOff = 1e-9;
 /// allows (a 1 m face tilted by a 1e-4 m tolerance is 1e-4 rad), with margin.
 inline constexpr double kNormalConeSlack = 1e-3;
 
+/// Contact reuse (contact_reuse.h): a pair keeps its last full test's contacts while no
+/// point of one object has moved relative to the other by more than this fraction of the
+/// contact tolerance (0.1 nm at the default). A reused gap is then within that distance
+/// of a fresh test's, a thousandth of the band: far below what the solver's allowed
+/// overlap (a quarter of the band) or any reported figure resolves. Bodies at rest move
+/// far less (a resting pyramid of 210 boxes: 5e-12 m in half a second); settling ones
+/// far more (millimetres a step), so the exact size hardly changes what is reused.
+inline constexpr double kContactReuseFraction = 1e-3;
+
 /// Bounds on the number of times the voxel grid halves an object's container (M).
 /// Garcia-Alonso et al. found 8 or 9 best for their meshes; polysim picks M so that the
 /// surface crosses each leaf voxel with about kFacesPerVoxel faces

@@ -156,7 +156,7 @@ void readSettings(const json& root, Scene& scene, Problems& problems) {
     return Fields(root[key], key, problems);
   };
   if (std::optional<Fields> contact = object("contact")) {
-    contact->allowOnly({"tolerance", "restitution", "friction", "solver_sweeps", "speculative_reach"});
+    contact->allowOnly({"tolerance", "restitution", "friction", "solver_sweeps", "speculative_reach", "reuse_contacts"});
     if (auto t = contact->positive("tolerance")) scene.contact.tolerance = *t;
     if (auto e = contact->number("restitution")) {
       if (*e < 0 || *e > 1) contact->problem("restitution must be in [0, 1]");
@@ -176,6 +176,7 @@ void readSettings(const json& root, Scene& scene, Problems& problems) {
         contact->problem("speculative_reach must be 0 or at least the tolerance (" + Fields::num(scene.contact.tolerance) + " m)");
       else scene.contact.speculativeReach = *reach;
     }
+    if (auto reuse = contact->boolean("reuse_contacts")) scene.contact.reuseContacts = *reuse;
   }
   if (std::optional<Fields> sleep = object("sleep")) {
     sleep->allowOnly({"enabled", "speed", "time"});

@@ -38,6 +38,10 @@ struct ContactSettings {
   /// solver as speculative contacts ("speculative_reach", sim/speculative_contacts.h);
   /// 0: none, every new touch backs the island up to just contact.
   double speculativeReach = kSpeculativeReach;
+  /// Pairs that have hardly moved against each other keep their contacts from one test
+  /// to the next ("reuse_contacts", collision/contact_reuse.h); false tests every pair
+  /// afresh each time.
+  bool reuseContacts = true;
 };
 
 struct BodySpec {

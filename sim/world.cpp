@@ -19,6 +19,7 @@ namespace polysim::sim {
 World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), db_(buildObjectDatabase(scene)) {
   checkInitialState(scene_);
   tocOptions_.method = method;
+  workspace_.reuse.enable(scene_.contact.reuseContacts);
   for (const BodySpec& spec : scene_.bodies) {
     dynamics::RigidBody body = dynamics::RigidBody::fixed();
     if (!spec.isStatic) {

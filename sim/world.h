@@ -87,6 +87,9 @@ class World {
   /// The body is asleep (scene "sleep"): it keeps its pose exactly and costs nothing
   /// until a body that moves can reach it.
   bool asleep(int body) const { return asleep_[body] != 0; }
+  /// Pairs whose contacts were reused rather than tested, over the world's life (scene
+  /// "reuse_contacts", collision/contact_reuse.h).
+  long contactsReused() const { return workspace_.reuse.reused(); }
   /// Moves dynamic body `body` between steps to `pose` (body frame to world) with the
   /// given velocities (m/s, rad/s, world), as a user refilling a pile or respawning a body
   /// would. The body and every body it touched wake; its old contacts and their warm

@@ -66,6 +66,7 @@ TEST_F(SceneFiles, LoadsWithSpecDefaults) {
   EXPECT_DOUBLE_EQ(s.contact.friction, 0.5);
   EXPECT_DOUBLE_EQ(s.contact.restitution, 0.0);
   EXPECT_DOUBLE_EQ(s.contact.speculativeReach, 0.02);
+  EXPECT_TRUE(s.contact.reuseContacts);
   EXPECT_TRUE(s.sleep.enabled);
   EXPECT_DOUBLE_EQ(s.sleep.speed, 0.01);
   EXPECT_DOUBLE_EQ(s.sleep.time, 0.5);
@@ -153,6 +154,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "contact: speculative_reach must not be negative (0 turns speculative contacts off)"},
         Rejection{"reach_inside_band", R"({"contact": {"tolerance": 0.001, "speculative_reach": 0.0005}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
                   "contact: speculative_reach must be 0 or at least the tolerance (0.001 m)"},
+        Rejection{"reuse_mistyped", R"({"contact": {"reuse_contacts": 1}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
+                  "contact: reuse_contacts must be true or false (got a number)"},
         Rejection{"sleep_not_an_object", R"({"sleep": true, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",
                   "sleep: must be an object"},
         Rejection{"sleep_negative_speed", R"({"sleep": {"speed": -1}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1,1,1]}}]})",

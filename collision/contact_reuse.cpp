@@ -1,0 +1,90 @@
+#include "collision/contact_reuse.h"
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+
+#include "collision/tolerances.h"
+
+namespace polysim::collision {
+namespace {
+
+// b's frame relative to the world and a's pose in b's frame.
+Eigen::Isometry3d relativePose(const ObjNode& A, const ObjNode& B) { return B.X_WO.inverse() * A.X_WO; }
+
+// A bound on how far any point of a (within `reach` of its origin) moved relative to b
+// between two relative poses: |t - t0| + |(R - R0) p| <= |t - t0| + ||R - R0||_F |p|.
+// The Frobenius norm, not an angle: acos near 1 loses half the digits.
+double displacementBound(const Eigen::Isometry3d& now, const Eigen::Isometry3d& then, double reach) {
+  return (now.translation() - then.translation()).norm() + (now.linear() - then.linear()).norm() * reach;
+}
+
+// The contact carried by the rigid motion X.
+Contact carried(const Contact& c, const Eigen::Isometry3d& X) {
+  Contact out = c;
+  out.normal = X.linear() * c.normal;
+  for (Eigen::Vector3d& p : out.points) p = X * p;
+  return out;
+}
+
+}  // namespace
+
+size_t ContactReuse::KeyHash::operator()(const Key& k) const {
+  const size_t h = std::hash<long long>()((static_cast<long long>(k.a) << 32) ^ static_cast<unsigned>(k.b));
+  return h ^ (std::hash<double>()(k.tolerance) * 31);
+}
+
+std::optional<PairResult> ContactReuse::find(const ObjectDatabase& db, int a, int b) {
+  const ObjNode& A = db.objects[a];
+  const ObjNode& B = db.objects[b];
+  if (!enabled_ || A.id < 0 || B.id < 0) return std::nullopt;
+  const auto found = results_.find({A.id, B.id, db.tolerance});
+  if (found == results_.end()) return std::nullopt;
+  Kept& k = found->second;
+  if (k.meshA != A.mesh.get() || k.meshB != B.mesh.get()) return std::nullopt;
+  const double drift = displacementBound(relativePose(A, B), k.X_BA, k.reachA);
+  const double eps = db.tolerance;
+  if (!(drift <= kContactReuseFraction * eps)) return std::nullopt;
+  // Every gap moved by at most `drift`: the deepest stays short of interpenetrating and
+  // some feature stays inside the band, so the pair is still in contact.
+  double deepest = std::numeric_limits<double>::infinity();
+  for (const Contact& c : k.contacts) deepest = std::min(deepest, c.separation);
+  if (!(deepest - drift > -eps && deepest + drift <= eps)) return std::nullopt;
+  k.usedAt = query_;
+  ++reused_;
+  PairResult pair;
+  pair.a = a;
+  pair.b = b;
+  pair.status = k.status;
+  pair.contacts.reserve(k.contacts.size());
+  for (const Contact& c : k.contacts) pair.contacts.push_back(carried(c, B.X_WO));
+  return pair;
+}
+
+void ContactReuse::keep(const ObjectDatabase& db, const PairResult& pair) {
+  const ObjNode& A = db.objects[pair.a];
+  const ObjNode& B = db.objects[pair.b];
+  if (!enabled_ || A.id < 0 || B.id < 0 || pair.status != Status::Contact || pair.contacts.empty()) return;
+  Kept k;
+  k.meshA = A.mesh.get();
+  k.meshB = B.mesh.get();
+  k.X_BA = relativePose(A, B);
+  k.reachA = 0.0;
+  for (const Eigen::Vector3d& v : A.mesh->vertices()) k.reachA = std::max(k.reachA, v.norm());
+  k.status = pair.status;
+  const Eigen::Isometry3d X_BW = B.X_WO.inverse();
+  for (const Contact& c : pair.contacts) k.contacts.push_back(carried(c, X_BW));
+  k.usedAt = query_;
+  results_.insert_or_assign(Key{A.id, B.id, db.tolerance}, std::move(k));
+  ++kept_;
+}
+
+void ContactReuse::endQuery() {
+  if (!enabled_) return;
+  ++query_;
+  if (query_ % kStaleQueries != 0) return;
+  for (auto it = results_.begin(); it != results_.end();)
+    it = query_ - it->second.usedAt > kStaleQueries ? results_.erase(it) : std::next(it);
+}
+
+}  // namespace polysim::collision
