@@ -35,6 +35,12 @@ class SmallLcp {
   std::optional<BlockVector> solve(const BlockVector& b) const;
 
  private:
+  // Set `set`'s pseudo-inverse (n: the problem's size), made on first use.
+  const double* pseudoInverse(unsigned set, int n) const;
+  // The set of all N points, in fixed-size arithmetic; empty when it does not hold.
+  template <int N>
+  std::optional<BlockVector> solveWithEveryPoint(const BlockVector& b, double scale) const;
+
   BlockMatrix A_;
   double largestCoefficient_;
   // Each set's pseudo-inverse, column-major over the set's points, once made (bit `set`
