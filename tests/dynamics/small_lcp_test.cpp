@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+#include <Eigen/QR>
 #include <random>
 
 #include "dynamics/contact_solver.h"
@@ -57,6 +59,30 @@ TEST(SmallLcp, RandomPositiveDefiniteProblemsAreSolvedExactly) {
     ASSERT_TRUE(x) << "trial " << trial;
     expectComplementary(A, b, *x, 1e-9);
   }
+}
+
+// Singular problems that rank-deficient contacts give (the coplanar corners of a face: A
+// = J M^-1 J^T of rank 3 for 4 corners), with a random part of b the corners cannot meet
+// together (along A's null space, a twist no load produces): some corner must lift off,
+// and every point pushing, solved in the least-norm sense, is not an answer even where
+// its impulses come out positive.
+TEST(SmallLcp, RandomSingularProblemsLiftTheCornersTheyMust) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int unmet = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::MatrixXd J(4, 3);  // each corner's normal row: [1, y, -x] for a face in z
+    for (int i = 0; i < 4; ++i) J.row(i) << 1.0, 0.5 * (i < 2 ? 1 : -1) + 0.1 * u(rng), 0.5 * (i % 2 ? 1 : -1) + 0.1 * u(rng);
+    const Eigen::MatrixXd A = J * Eigen::Vector3d(1.0, 6.0, 6.0).asDiagonal() * J.transpose();
+    const Eigen::VectorXd null = Eigen::FullPivLU<Eigen::MatrixXd>(J.transpose()).kernel().col(0).normalized();
+    Eigen::VectorXd b = -Eigen::VectorXd::Ones(4) + 0.3 * u(rng) * null;
+    const Eigen::VectorXd leastNorm = -(Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).pseudoInverse() * b);
+    unmet += leastNorm.minCoeff() >= 0 && (A * leastNorm + b).minCoeff() < -1e-6;
+    const std::optional<Eigen::VectorXd> x = solveSmallLcp(A, b);
+    ASSERT_TRUE(x) << "trial " << trial;
+    expectComplementary(A, b, *x, 1e-9);
+  }
+  EXPECT_GT(unmet, 20) << "trials where every corner pushing has positive impulses yet misses a target";
 }
 
 RigidBody unitCube() {
