@@ -46,68 +46,59 @@ Members membersOf(unsigned set, int n) {
 
 SmallLcp::SmallLcp(const BlockMatrix& A) : A_(A), largestCoefficient_(A.size() ? A.cwiseAbs().maxCoeff() : 0.0) {}
 
-const double* SmallLcp::pseudoInverse(unsigned set, int n) const {
+const double* SmallLcp::expandedPseudoInverse(unsigned set, int n) const {
   double* stored = pseudoInverses_[set].data();
   if (made_ & (1u << set)) return stored;
   const Members in = membersOf(set, n);
-  BlockMatrix Ass(in.count, in.count);
-  for (int i = 0; i < in.count; ++i)
-    for (int j = 0; j < in.count; ++j) Ass(i, j) = A_(in.index[i], in.index[j]);
-  // The least-norm solution's operator, as CompleteOrthogonalDecomposition::solve would
-  // apply it: rank found to the decomposition's own threshold.
-  Eigen::Map<BlockMatrix>(stored, in.count, in.count) = Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse();
+  Eigen::Map<BlockMatrix> expanded(stored, n, n);
+  expanded.setZero();
+  if (in.count > 0) {
+    BlockMatrix Ass(in.count, in.count);
+    for (int i = 0; i < in.count; ++i)
+      for (int j = 0; j < in.count; ++j) Ass(i, j) = A_(in.index[i], in.index[j]);
+    // The least-norm solution's operator, as CompleteOrthogonalDecomposition::solve would
+    // apply it: rank found to the decomposition's own threshold.
+    const BlockMatrix pinv = Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse();
+    for (int i = 0; i < in.count; ++i)
+      for (int j = 0; j < in.count; ++j) expanded(in.index[i], in.index[j]) = pinv(i, j);
+  }
   made_ |= 1u << set;
   return stored;
 }
 
 template <int N>
-std::optional<BlockVector> SmallLcp::solveWithEveryPoint(const BlockVector& b, double scale) const {
+std::optional<BlockVector> SmallLcp::solveWithSet(unsigned set, const BlockVector& b, double scale) const {
   using Matrix = Eigen::Matrix<double, N, N>;
   using Vector = Eigen::Matrix<double, N, 1>;
-  const Eigen::Map<const Matrix> pinv(pseudoInverse((1u << N) - 1, N));
+  const Eigen::Map<const Matrix> pinv(expandedPseudoInverse(set, N));
   const Eigen::Map<const Matrix> A(A_.data());  // n x n, stored contiguously
   const Eigen::Map<const Vector> bN(b.data());
-  const Vector x = -(pinv * bN);
+  const Vector x = -(pinv * bN);  // zero outside the set
   const Vector w = A * x + bN;
   for (int i = 0; i < N; ++i)
-    if (x(i) < -scale || std::abs(w(i)) > scale) return std::nullopt;
+    if ((set & (1u << i)) ? x(i) < -scale || std::abs(w(i)) > scale : w(i) < -scale) return std::nullopt;
   return BlockVector(x.cwiseMax(0.0));
 }
 
+template <int N>
+std::optional<BlockVector> SmallLcp::solveSized(const BlockVector& b, double scale) const {
+  for (unsigned set : setsLargestFirst(N))
+    if (std::optional<BlockVector> x = solveWithSet<N>(set, b, scale)) return x;
+  return std::nullopt;
+}
+
 std::optional<BlockVector> SmallLcp::solve(const BlockVector& b) const {
-  const int n = static_cast<int>(b.size());
   // Round-off scale of the residuals: the problem's own magnitudes.
   const double scale = kLcpRoundOff * std::max({1.0, largestCoefficient_, b.cwiseAbs().maxCoeff()});
-  // Every point pushing is the set tried first and the one that holds in nearly every
-  // solve (a face resting on its corners): tried in fixed-size arithmetic, about three
-  // times quicker than the general path below.
-  std::optional<BlockVector> every;
-  switch (n) {
-    case 2: every = solveWithEveryPoint<2>(b, scale); break;
-    case 3: every = solveWithEveryPoint<3>(b, scale); break;
-    case 4: every = solveWithEveryPoint<4>(b, scale); break;
-    default: break;
+  // In fixed-size arithmetic per size: each set's operator kept expanded to n x n (zero
+  // outside the set), a try is two products of 4 x 4 at most, with no gathering.
+  switch (b.size()) {
+    case 1: return solveSized<1>(b, scale);
+    case 2: return solveSized<2>(b, scale);
+    case 3: return solveSized<3>(b, scale);
+    case 4: return solveSized<4>(b, scale);
+    default: return std::nullopt;
   }
-  if (every) return every;
-  const bool everyTried = n >= 2;
-  for (unsigned set : setsLargestFirst(n)) {
-    if (everyTried && set == (1u << n) - 1) continue;
-    const Members in = membersOf(set, n);
-    BlockVector x = BlockVector::Zero(n);
-    if (in.count > 0) {
-      using Stored = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockSize, kMaxBlockSize>>;
-      const Stored pinv(pseudoInverse(set, n), in.count, in.count);
-      BlockVector bs(in.count);
-      for (int i = 0; i < in.count; ++i) bs(i) = b(in.index[i]);
-      const BlockVector xs = -(pinv * bs);
-      for (int i = 0; i < in.count; ++i) x(in.index[i]) = xs(i);
-    }
-    const BlockVector w = A_ * x + b;
-    bool valid = true;
-    for (int i = 0; i < n && valid; ++i) valid = (set & (1u << i)) ? x(i) >= -scale && std::abs(w(i)) <= scale : w(i) >= -scale;
-    if (valid) return BlockVector(x.cwiseMax(0.0));
-  }
-  return std::nullopt;
 }
 
 std::optional<Eigen::VectorXd> solveSmallLcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {

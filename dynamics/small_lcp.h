@@ -24,8 +24,8 @@ using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMa
 /// sets first; where A is singular (four coplanar corners of one rigid face carry a load
 /// in infinitely many ways), a set's system is solved in the least-norm sense, so the
 /// load spreads evenly, as on a real face, not onto whichever corner came first. Each
-/// set's pseudo-inverse is made once, when first needed; a solve is then products of
-/// matrices of at most 4 x 4.
+/// set's pseudo-inverse is made once, when first needed, and kept expanded to n x n
+/// (zero outside the set); a try is then two fixed-size products of at most 4 x 4.
 class SmallLcp {
  public:
   explicit SmallLcp(const BlockMatrix& A);
@@ -35,16 +35,19 @@ class SmallLcp {
   std::optional<BlockVector> solve(const BlockVector& b) const;
 
  private:
-  // Set `set`'s pseudo-inverse (n: the problem's size), made on first use.
-  const double* pseudoInverse(unsigned set, int n) const;
-  // The set of all N points, in fixed-size arithmetic; empty when it does not hold.
+  // Set `set`'s pseudo-inverse expanded to n x n (zero outside the set), made on first use.
+  const double* expandedPseudoInverse(unsigned set, int n) const;
+  // One set tried for a problem of size N; empty when it does not hold.
   template <int N>
-  std::optional<BlockVector> solveWithEveryPoint(const BlockVector& b, double scale) const;
+  std::optional<BlockVector> solveWithSet(unsigned set, const BlockVector& b, double scale) const;
+  // Every set, largest first, for a problem of size N.
+  template <int N>
+  std::optional<BlockVector> solveSized(const BlockVector& b, double scale) const;
 
   BlockMatrix A_;
   double largestCoefficient_;
-  // Each set's pseudo-inverse, column-major over the set's points, once made (bit `set`
-  // of made_). Raw storage, so that making a SmallLcp touches only A_ and made_: a pile's
+  // Each set's pseudo-inverse, expanded to n x n, column-major, once made (bit `set` of
+  // made_). Raw storage, so that making a SmallLcp touches only A_ and made_: a pile's
   // solve makes thousands, most of which try one set.
   mutable unsigned made_ = 0;
   mutable std::array<std::array<double, kMaxBlockSize * kMaxBlockSize>, 1u << kMaxBlockSize> pseudoInverses_;
