@@ -128,10 +128,14 @@ class World {
   std::vector<collision::PairResult> solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                     const std::vector<collision::PairResult>& touching);
   /// Solves `contacts` over `horizon` seconds; contacts overlapping deeper than
-  /// `allowedOverlap` (m) are pushed apart (contact_solver.h). `remember`: keep the result
-  /// as the forces the next solves warm-start from.
-  void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool remember,
+  /// `allowedOverlap` (m) are pushed apart (contact_solver.h). `stepStart`: the solve at
+  /// the step's start, which holds the step's whole gravity; it warm-starts from the last
+  /// such solve and is kept for the next. A solve after an event starts from zero.
+  void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool stepStart,
                        double allowedOverlap);
+  /// Sets each point's impulses (N s over `horizon`) from the last step-start solve's
+  /// forces at the same pair's nearest point within kWarmStartRadius.
+  void warmStartFromLastStep(std::vector<dynamics::ContactPoint>& points, double horizon) const;
   /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
   /// that overlap over `duration`.
   std::vector<std::vector<int>> islandsOfStep(double duration) const;

@@ -187,11 +187,12 @@ TEST(BusyScenes, FrictionlessColumnOfCupsKeepsTheEnergyBound) {
     EXPECT_TRUE(seen.finite);
     EXPECT_LE(seen.energyRise, energyBound(w));
     EXPECT_LE(seen.deepest, w.scene().contact.tolerance);
-    // Seed 4 stalls at the event bound nearly every step from 1.4 s; its touching bodies
-    // stop each time, so it ends at rest (kept moving, they reach 3.6 m/s by 10 s).
-    if (seed == 4) {
-      for (size_t i = 0; i < w.bodies().size(); ++i) EXPECT_TRUE(w.atRest(static_cast<int>(i))) << scene.bodies[i].name;
-    }
+    // Seed 4 once stalled at the event bound nearly every step from 1.4 s: its touching
+    // bodies stopped each time, and the column stood frozen with its top cups 0.3 m off
+    // the axis (kept moving instead, they gained gravity: 3.6 m/s by 10 s). Since solves
+    // after an event start from zero impulses, it stalls in 79 of its 240 steps and
+    // topples, 1,200 J of its 1,575 J gone in the cups' impacts by 4 s: the energy bound
+    // is what guards it.
   }
 }
 
