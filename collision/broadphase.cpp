@@ -11,15 +11,10 @@ Eigen::AlignedBox3d worldContainer(const ObjNode& object) {
   return transformBox(object.X_WO, object.grid->container());
 }
 
-void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBox3d>& boxes,
-                          std::vector<std::pair<int, int>>& pairs) {
-  const int n = static_cast<int>(db.objects.size());
-  boxes.resize(db.objects.size());
-  std::vector<int> order(db.objects.size());
-  for (int i = 0; i < n; ++i) {
-    boxes[i] = grow(worldContainer(db.objects[i]), db.tolerance);  // as overlapRegion grows them
-    order[i] = i;
-  }
+void overlappingBoxPairs(const ObjectDatabase& db, const std::vector<Eigen::AlignedBox3d>& boxes,
+                         std::vector<std::pair<int, int>>& pairs) {
+  std::vector<int> order(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) order[i] = static_cast<int>(i);
   std::sort(order.begin(), order.end(), [&](int i, int j) { return boxes[i].min().x() < boxes[j].min().x(); });
   pairs.clear();
   for (size_t k = 0; k < order.size(); ++k)
@@ -29,6 +24,14 @@ void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBo
       pairs.emplace_back(i, j);
     }
   std::sort(pairs.begin(), pairs.end());
+}
+
+void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBox3d>& boxes,
+                          std::vector<std::pair<int, int>>& pairs) {
+  boxes.resize(db.objects.size());
+  for (size_t i = 0; i < db.objects.size(); ++i)
+    boxes[i] = grow(worldContainer(db.objects[i]), db.tolerance);  // as overlapRegion grows them
+  overlappingBoxPairs(db, boxes, pairs);
 }
 
 std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode& b, double eps) {

@@ -21,6 +21,12 @@ Eigen::AlignedBox3d worldContainer(const ObjNode& object);
 /// of their world container boxes, each grown by eps. Empty optional when they cannot.
 std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode& b, double eps);
 
+/// The pairs of objects (i < j, not both static) whose boxes (one per object of the
+/// database, in any frame they share) meet, by sweep and prune along x: about N log N
+/// plus the pairs. Sorted by i, then j.
+void overlappingBoxPairs(const ObjectDatabase& db, const std::vector<Eigen::AlignedBox3d>& boxes,
+                         std::vector<std::pair<int, int>>& pairs);
+
 /// The pairs of objects (i < j, not both static) whose world containers, each grown by
 /// eps (m), meet: those overlapRegion() may find a region for, and no others. Sweep and
 /// prune along x, so N objects cost about N log N plus the pairs, not N^2 / 2 box tests.

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "collision/aabb.h"
+#include "collision/broadphase.h"
 #include "collision/convex_separation.h"
 #include "collision/toc_search.h"
 #include "collision/tolerances.h"
@@ -19,19 +20,24 @@ using namespace toc;
 // than kTunnelingSafety times its thinner object's thickness between two tests; may be
 // more than kMaxSubintervals (and is not a whole number).
 double subintervalsAgainstTunnelling(const ObjectDatabase& db) {
+  const size_t n = db.objects.size();
+  std::vector<Eigen::AlignedBox3d> containers(n), swept(n);
+  for (size_t i = 0; i < n; ++i) {
+    containers[i] = worldContainer(db.objects[i]);
+    swept[i] = grow(containers[i], db.objects[i].motionBound);
+  }
+  std::vector<std::pair<int, int>> candidates;  // by sweep and prune: a pile's island costs N log N, not N^2 / 2
+  overlappingBoxPairs(db, swept, candidates);
   double worst = 0.0;
-  const int n = static_cast<int>(db.objects.size());
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b) {
-      const ObjNode& A = db.objects[a];
-      const ObjNode& B = db.objects[b];
-      const double motion = A.motionBound + B.motionBound;
-      const double thickness = std::min(A.thickness, B.thickness);
-      if (motion <= 0.0 || !std::isfinite(thickness)) continue;
-      // Every pose in the interval lies within the t = 1 box grown by the motion bound.
-      if (!grow(worldContainer(A), A.motionBound).intersects(grow(worldContainer(B), B.motionBound))) continue;
-      worst = std::max(worst, motion / (kTunnelingSafety * thickness));
-    }
+  for (const auto& [a, b] : candidates) {
+    const ObjNode& A = db.objects[a];
+    const ObjNode& B = db.objects[b];
+    const double motion = A.motionBound + B.motionBound;
+    const double thickness = std::min(A.thickness, B.thickness);
+    if (motion <= 0.0 || !std::isfinite(thickness)) continue;
+    // Every pose in the interval lies within the t = 1 box grown by the motion bound.
+    worst = std::max(worst, motion / (kTunnelingSafety * thickness));
+  }
   return worst;
 }
 

@@ -97,17 +97,20 @@ Separation signedSeparation(Search& s, const PairIds& ids, double reach) {
 }
 
 PairIds pairsThatCanMeet(const ObjectDatabase& db) {
-  PairIds ids;
-  const int n = static_cast<int>(db.objects.size());
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b) {
-      const ObjNode& A = db.objects[a];
-      const ObjNode& B = db.objects[b];
-      if (A.isStatic && B.isStatic) continue;
-      // Every pose in the interval lies within the current box grown by the motion bound.
-      if (grow(worldContainer(A), A.motionBound + db.tolerance).intersects(grow(worldContainer(B), B.motionBound)))
-        ids.emplace_back(a, b);
-    }
+  const size_t n = db.objects.size();
+  std::vector<Eigen::AlignedBox3d> containers(n), reach(n);
+  for (size_t i = 0; i < n; ++i) {
+    containers[i] = worldContainer(db.objects[i]);
+    reach[i] = grow(containers[i], db.objects[i].motionBound + db.tolerance);  // a superset: both grown by eps
+  }
+  PairIds candidates, ids;
+  overlappingBoxPairs(db, reach, candidates);
+  for (const auto& [a, b] : candidates) {
+    const ObjNode& A = db.objects[a];
+    const ObjNode& B = db.objects[b];
+    // Every pose in the interval lies within the current box grown by the motion bound.
+    if (grow(containers[a], A.motionBound + db.tolerance).intersects(grow(containers[b], B.motionBound))) ids.emplace_back(a, b);
+  }
   return ids;
 }
 

@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 #include <random>
 
+#include "collision/aabb.h"
+#include "collision/broadphase.h"
 #include "collision/contact_reduction.h"
 #include "collision/intersection.h"
 #include "collision/shapes.h"
@@ -196,6 +199,34 @@ TEST(IntersectionRandom, EveryOverlapInTheBandIsReportedAtItsDepth) {
   EXPECT_GT(checked, 100);  // most placements end in the band deep enough to check
   RecordProperty("checked", checked);
   RecordProperty("least_reported_to_judged", std::to_string(worst));
+}
+
+// The sweep and prune behind test4Intersection() and collisionDetect()'s pairs that can
+// meet, against testing every pair of boxes: random boxes of many sizes (some reaching to
+// infinity, as an unknown motion bound makes them), some objects static.
+TEST(IntersectionRandom, SweepAndPruneFindsEveryOverlappingPairOfBoxes) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> centre(-10, 10), size(0.01, 3);
+  const auto box = std::make_shared<PolygonMesh>(makeBox(V3(1, 1, 1)));
+  long found = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    ObjectDatabase db;
+    std::vector<Eigen::AlignedBox3d> boxes;
+    for (int i = 0; i < 150; ++i) {
+      db.add("b", box, Eigen::Isometry3d::Identity(), i % 7 == 0);
+      const V3 c(centre(rng), centre(rng), centre(rng)), half(size(rng), size(rng), size(rng));
+      boxes.emplace_back(c - half, c + half);
+      if (i % 37 == 5) boxes.back() = grow(boxes.back(), std::numeric_limits<double>::infinity());
+    }
+    std::vector<std::pair<int, int>> swept, every;
+    overlappingBoxPairs(db, boxes, swept);
+    for (int i = 0; i < 150; ++i)
+      for (int j = i + 1; j < 150; ++j)
+        if (!(db.objects[i].isStatic && db.objects[j].isStatic) && boxes[i].intersects(boxes[j])) every.emplace_back(i, j);
+    EXPECT_EQ(swept, every) << "trial " << trial;
+    found += static_cast<long>(every.size());
+  }
+  EXPECT_GT(found, 2000);
 }
 
 }  // namespace
