@@ -13,6 +13,7 @@
 #include "collision/contact_reduction.h"
 #include "collision/intersection.h"
 #include "collision/shapes.h"
+#include "collision/toc_search.h"
 #include "dynamics/settings.h"
 #include "tests/test_support.h"
 
@@ -227,6 +228,40 @@ TEST(IntersectionRandom, SweepAndPruneFindsEveryOverlappingPairOfBoxes) {
     found += static_cast<long>(every.size());
   }
   EXPECT_GT(found, 2000);
+}
+
+// collisionDetect()'s pairs that can meet in an interval: those whose containers, each
+// grown by its motion bound, come within the tolerance of each other, found by sweep and
+// prune. Rows of boxes at random gaps of 0 to 3 tolerances between their containers, with
+// random motion bounds, against every pair.
+TEST(IntersectionRandom, PairsThatCanMeetAreThoseWithinTheirMotionAndTheTolerance) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto box = std::make_shared<PolygonMesh>(makeBox(V3(1, 1, 1)));
+  int withinBandOnly = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    ObjectDatabase db;
+    const double eps = db.tolerance;
+    db.add("first", box, Eigen::Isometry3d::Identity(), false);
+    const double width = worldContainer(db.objects[0]).sizes().x();
+    double x = 0.0;
+    for (int i = 1; i < 30; ++i) {
+      x += width + 3 * eps * unit(rng);
+      db.add("box", box, Eigen::Isometry3d(Eigen::Translation3d(x, 0, 0)), i % 9 == 0);
+    }
+    for (ObjNode& o : db.objects) o.motionBound = o.isStatic || unit(rng) < 0.5 ? 0.0 : eps * unit(rng);
+    toc::PairIds every;
+    for (int a = 0; a < 30; ++a)
+      for (int b = a + 1; b < 30; ++b) {
+        const ObjNode &A = db.objects[a], &B = db.objects[b];
+        if (A.isStatic && B.isStatic) continue;
+        if (grow(worldContainer(A), A.motionBound + eps).intersects(grow(worldContainer(B), B.motionBound))) every.emplace_back(a, b);
+        withinBandOnly += b == a + 1 && !grow(worldContainer(A), A.motionBound).intersects(grow(worldContainer(B), B.motionBound)) &&
+                          grow(worldContainer(A), A.motionBound + eps).intersects(grow(worldContainer(B), B.motionBound));
+      }
+    EXPECT_EQ(toc::pairsThatCanMeet(db), every) << "trial " << trial;
+  }
+  EXPECT_GT(withinBandOnly, 50) << "neighbours apart by more than their motion but within the tolerance";
 }
 
 }  // namespace
