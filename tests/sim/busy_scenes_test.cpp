@@ -8,33 +8,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/scene.h"
-#include "sim/scene_generators.h"
 #include "sim/world.h"
+#include "tests/sim/scenario_support.h"
 #include "tests/test_support.h"
 
 namespace polysim::sim {
 namespace {
 
-Scene generated(const std::string& kind, int count, unsigned long long seed = 1, std::optional<double> tilt = {}) {
-  MakeOptions o;
-  o.kind = kind;
-  o.count = count;
-  o.seed = seed;
-  o.tilt = tilt;
-  const std::string path = ::polysim::test::tempPath("polysim_busy_" + kind + ".json");
-  std::ofstream(path) << makeScene(o).dump(1) << "\n";
-  Scene scene = loadScene(path);
-  // Sleeping off: these guard the contact solver, and "at rest" must come from it, not
-  // from bodies put to sleep at 1 cm/s (sleep_test.cpp runs busy scenes with sleeping).
-  scene.sleep.enabled = false;
-  return scene;
-}
+using test::generated;
 
 // What a run kept true, step by step.
 struct Watched {

@@ -4,10 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <string>
 
-#include "sim/scene_generators.h"
 #include "tests/sim/scenario_support.h"
 #include "tests/test_support.h"
 
@@ -15,14 +13,7 @@ namespace polysim::sim {
 namespace {
 
 Scene generated(const std::string& kind, int count, unsigned long long seed, bool reuse) {
-  MakeOptions o;
-  o.kind = kind;
-  o.count = count;
-  o.seed = seed;
-  const std::string path = ::polysim::test::tempPath("reuse_" + kind + ".json");
-  std::ofstream(path) << makeScene(o).dump(1) << "\n";
-  Scene scene = loadScene(path);
-  scene.sleep.enabled = false;  // every pair is tested every step
+  Scene scene = test::generated(kind, count, seed);  // sleeping off: every pair is tested every step
   scene.contact.reuseContacts = reuse;
   return scene;
 }

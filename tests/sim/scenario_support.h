@@ -5,10 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <optional>
 #include <string>
 
 #include "sim/scene.h"
+#include "sim/scene_generators.h"
 #include "sim/world.h"
+#include "tests/test_support.h"
 
 namespace polysim::sim::test {
 
@@ -19,6 +23,22 @@ inline constexpr double g = 9.81;  // m/s^2, the scenes' gravity
 inline Scene scene(const std::string& name, bool sleeping = true) {
   Scene s = loadScene(std::string(POLYSIM_SCENES_DIR) + "/" + name + ".json");
   s.sleep.enabled = sleeping;
+  return s;
+}
+
+// The scene `polysim make KIND --count N --seed S [--tilt T]` writes, read back as a
+// scene file is, with sleeping off: a busy scene's tests guard the contact solver, and
+// "at rest" must come from it, not from bodies put to sleep at 1 cm/s.
+inline Scene generated(const std::string& kind, int count, unsigned long long seed = 1, std::optional<double> tilt = {}) {
+  MakeOptions o;
+  o.kind = kind;
+  o.count = count;
+  o.seed = seed;
+  o.tilt = tilt;
+  const std::string path = ::polysim::test::tempPath("generated_" + kind + ".json");
+  std::ofstream(path) << makeScene(o).dump(1) << "\n";
+  Scene s = loadScene(path);
+  s.sleep.enabled = false;
   return s;
 }
 
