@@ -30,6 +30,8 @@ struct Watched {
   /// Steps in which an island's clock stood still: all its events, up to the bound, at
   /// the step's start (the detector and the solver disagreeing about one pair).
   int stalledSteps = 0;
+  /// Steps in which an island reached the event bound at all.
+  int boundSteps = 0;
 };
 
 // An island of the step reached the event bound without its clock moving.
@@ -52,6 +54,7 @@ Watched run(World& w, double seconds) {
     const double stepStart = w.time();
     const StepReport& r = w.step(w.scene().dt);
     seen.stalledSteps += stalled(r, stepStart);
+    seen.boundSteps += r.eventLimitHit;
     seen.energyRise = std::max(seen.energyRise, w.energy() - initial);
     seen.deepest = std::max(seen.deepest, r.penetration);
     for (const dynamics::RigidBody& b : w.bodies())
@@ -163,7 +166,8 @@ TEST(BusyScenes, ColumnOfCupsPlacedAtRestStaysThere) {
 // gravity in their speed without falling and gained 1,774 J in 4 s (196 kJ in 20 s).
 // Not asserted: that the column never stalls (seed 2 still does).
 TEST(BusyScenes, FrictionlessColumnOfCupsKeepsTheEnergyBound) {
-  for (const auto& [seed, seconds] : {std::pair{1ull, 20.0}, std::pair{2ull, 4.0}, std::pair{4ull, 4.0}}) {
+  for (const auto& [seed, seconds] : {std::pair{1ull, 20.0}, std::pair{2ull, 4.0}, std::pair{3ull, 4.0}, std::pair{4ull, 4.0},
+                                      std::pair{5ull, 4.0}}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Scene scene = generated("cups", 20, seed);
     scene.contact.friction = 0.0;
@@ -179,6 +183,12 @@ TEST(BusyScenes, FrictionlessColumnOfCupsKeepsTheEnergyBound) {
     // after an event start from zero impulses, it stalls in 79 of its 240 steps and
     // topples, 1,200 J of its 1,575 J gone in the cups' impacts by 4 s: the energy bound
     // is what guards it.
+    // Seeds 2, 3 and 5 never reach the event bound in their first 4 s. With cups
+    // speculating, their creases judged against walls 2 cm off that do not touch, each
+    // did in 21 to 54 steps (seeds 1 to 8 all did).
+    if (seed == 2 || seed == 3 || seed == 5) {
+      EXPECT_EQ(seen.boundSteps, 0);
+    }
   }
 }
 
