@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "collision/contact_reduction.h"
 #include "collision/containment.h"
@@ -125,15 +126,15 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
     // the ground (or wall) towards what rests on it.
     const bool flip = db.objects[a].isStatic;
     const int first = flip ? b : a, second = flip ? a : b;
-    std::optional<PairResult> reused = ws.reuse.find(db, first, second);
-    if (reused) {
+    PairResult pair;
+    if (std::optional<PairResult> kept = ws.reuse.find(db, first, second)) {
+      pair = std::move(*kept);
       ++result.pairsReused;
-      if (!options.contacts) reused->contacts.clear();
+      if (!options.contacts) pair.contacts.clear();  // a verdict-only test reports none
     } else {
-      reused = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested);
-      if (options.contacts) ws.reuse.keep(db, *reused);
+      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested);
+      if (options.contacts) ws.reuse.keep(db, pair);
     }
-    PairResult& pair = *reused;
     if (pair.status == Status::Separate) continue;
     result.status = std::max(result.status, pair.status);
     result.pairs.push_back(std::move(pair));
