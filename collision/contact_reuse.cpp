@@ -55,7 +55,7 @@ std::optional<PairResult> ContactReuse::find(const ObjectDatabase& db, int a, in
   PairResult pair;
   pair.a = a;
   pair.b = b;
-  pair.status = k.status;
+  pair.status = Status::Contact;
   pair.contacts.reserve(k.contacts.size());
   for (const Contact& c : k.contacts) pair.contacts.push_back(carried(c, B.X_WO));
   return pair;
@@ -71,12 +71,10 @@ void ContactReuse::keep(const ObjectDatabase& db, const PairResult& pair) {
   k.X_BA = relativePose(A, B);
   k.reachA = 0.0;
   for (const Eigen::Vector3d& v : A.mesh->vertices()) k.reachA = std::max(k.reachA, v.norm());
-  k.status = pair.status;
   const Eigen::Isometry3d X_BW = B.X_WO.inverse();
   for (const Contact& c : pair.contacts) k.contacts.push_back(carried(c, X_BW));
   k.usedAt = query_;
   results_.insert_or_assign(Key{A.id, B.id, db.tolerance}, std::move(k));
-  ++kept_;
 }
 
 void ContactReuse::endQuery() {

@@ -36,9 +36,8 @@ class ContactReuse {
   /// Ends one test of the database: results no test has used for kStaleQueries tests
   /// are dropped, so the memory follows the pairs in contact, not every pair ever seen.
   void endQuery();
-  /// How many pairs were reused and kept since construction.
+  /// How many pairs were reused since construction.
   long reused() const { return reused_; }
-  long kept() const { return kept_; }
 
  private:
   struct Key {
@@ -54,15 +53,14 @@ class ContactReuse {
     const PolygonMesh* meshB;
     Eigen::Isometry3d X_BA;  // a's pose in b's frame when tested
     double reachA;           // m, farthest vertex of a from a's origin
-    Status status;
-    std::vector<Contact> contacts;  // in b's frame
+    std::vector<Contact> contacts;  // in b's frame; the pair was in contact
     long usedAt;
   };
   static constexpr long kStaleQueries = 64;
 
   bool enabled_ = false;
   long query_ = 0;
-  long reused_ = 0, kept_ = 0;
+  long reused_ = 0;
   std::unordered_map<Key, Kept, KeyHash> results_;
 };
 
