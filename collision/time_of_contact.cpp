@@ -20,13 +20,11 @@ using namespace toc;
 // than kTunnelingSafety times its thinner object's thickness between two tests; may be
 // more than kMaxSubintervals (and is not a whole number).
 double subintervalsAgainstTunnelling(const ObjectDatabase& db) {
-  const size_t n = db.objects.size();
-  std::vector<Eigen::AlignedBox3d> containers(n), swept(n);
-  for (size_t i = 0; i < n; ++i) {
-    containers[i] = worldContainer(db.objects[i]);
-    swept[i] = grow(containers[i], db.objects[i].motionBound);
-  }
-  std::vector<std::pair<int, int>> candidates;  // by sweep and prune: a pile's island costs N log N, not N^2 / 2
+  // Every pose in the interval lies within the t = 1 box grown by the motion bound; the
+  // pairs whose such boxes meet, by sweep and prune (a pile's island: N log N, not N^2 / 2).
+  std::vector<Eigen::AlignedBox3d> swept(db.objects.size());
+  for (size_t i = 0; i < swept.size(); ++i) swept[i] = grow(worldContainer(db.objects[i]), db.objects[i].motionBound);
+  std::vector<std::pair<int, int>> candidates;
   overlappingBoxPairs(db, swept, candidates);
   double worst = 0.0;
   for (const auto& [a, b] : candidates) {
@@ -35,7 +33,6 @@ double subintervalsAgainstTunnelling(const ObjectDatabase& db) {
     const double motion = A.motionBound + B.motionBound;
     const double thickness = std::min(A.thickness, B.thickness);
     if (motion <= 0.0 || !std::isfinite(thickness)) continue;
-    // Every pose in the interval lies within the t = 1 box grown by the motion bound.
     worst = std::max(worst, motion / (kTunnelingSafety * thickness));
   }
   return worst;
