@@ -147,6 +147,30 @@ TEST(Sleep, AFallingBoxWakesASleepingStackAndAllSleepAgainAtTheirRestHeights) {
   }
 }
 
+// A box asleep on the ground is woken by a frictionless box sliding past 1 cm away (their
+// islands meet), which never touches it. Woken, it rests through that step: no gravity
+// and no path, so its pose does not change by a bit and the step has no event (given a
+// fall, it would sink into the ground within the step and be backed up to).
+TEST(Sleep, ABodyWokenByOneThatPassesByKeepsItsPoseThroughTheStepItWakes) {
+  World w(sceneFrom("pass_by", R"({"name": "pass_by", "dt": 0.016666666666666666, "bodies": [
+    {"name": "ground", "static": true, "shape": {"type": "box", "size": [20, 20, 1]}, "position": [0, 0, -0.5]},
+    {"name": "sleeper", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0, 0.5]},
+    {"name": "slider", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [-8, 1.01, 0.5],
+     "velocity": [2, 0, 0], "friction": 0.0}]})"));
+  bool woken = false;
+  while (!woken && w.time() < 6.0) {
+    const dynamics::RigidBody before = w.bodies()[1];
+    const bool wasAsleep = w.asleep(1);
+    const StepReport& r = w.step(kDt);
+    if (!wasAsleep || std::find(r.woke.begin(), r.woke.end(), 1) == r.woke.end()) continue;
+    woken = true;
+    EXPECT_LT(std::abs(w.bodies()[2].position.x()), 1.5) << "woken before the slider came near";
+    EXPECT_TRUE(samePose(w.bodies()[1], before)) << "moved by " << (w.bodies()[1].position - before.position).norm() << " m";
+    EXPECT_TRUE(r.events.empty()) << r.events.size() << " events in the step it woke";
+  }
+  EXPECT_TRUE(woken) << "the sleeper was never asleep and woken by the slider";
+}
+
 // A box sliding from rest down a 30 degree ramp with friction 0.5656 accelerates at
 // g (sin - mu cos) = 0.1 m/s^2: slow for its first 0.1 s, never slow for the sleep time.
 // It must not be put to sleep, and it slides as Coulomb says.
