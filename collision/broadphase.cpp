@@ -34,6 +34,18 @@ void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBo
   overlappingBoxPairs(db, boxes, pairs);
 }
 
+void candidateObjectPairsAmong(const ObjectDatabase& db, const std::vector<std::pair<int, int>>& among,
+                               std::vector<Eigen::AlignedBox3d>& boxes, std::vector<std::pair<int, int>>& pairs) {
+  boxes.assign(db.objects.size(), Eigen::AlignedBox3d());  // empty: not yet taken
+  const auto box = [&](int i) -> const Eigen::AlignedBox3d& {
+    if (boxes[i].isEmpty()) boxes[i] = grow(worldContainer(db.objects[i]), db.tolerance);
+    return boxes[i];
+  };
+  pairs.clear();
+  for (const auto& [i, j] : among)
+    if (box(i).intersects(box(j))) pairs.emplace_back(i, j);
+}
+
 std::optional<Eigen::AlignedBox3d> overlapRegion(const ObjNode& a, const ObjNode& b, double eps) {
   const Eigen::AlignedBox3d region = grow(worldContainer(a), eps).intersection(grow(worldContainer(b), eps));
   if (region.isEmpty()) return std::nullopt;

@@ -34,6 +34,12 @@ void overlappingBoxPairs(const ObjectDatabase& db, const std::vector<Eigen::Alig
 void candidateObjectPairs(const ObjectDatabase& db, std::vector<Eigen::AlignedBox3d>& boxes,
                           std::vector<std::pair<int, int>>& pairs);
 
+/// The same pairs, found among `among` alone (i < j each, sorted) instead of by sweep and
+/// prune: for a caller that knows no other pair can be within eps (collisionDetect()'s
+/// pairs that can meet in its interval). Costs the pairs given, not the objects.
+void candidateObjectPairsAmong(const ObjectDatabase& db, const std::vector<std::pair<int, int>>& among,
+                               std::vector<Eigen::AlignedBox3d>& boxes, std::vector<std::pair<int, int>>& pairs);
+
 /// A candidate polygon pair: face `a` of the first object, face `b` of the second.
 struct FacePair {
   int a, b;

@@ -120,7 +120,8 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
 IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorkspace& ws,
                                      const IntersectionOptions& options) {
   IntersectionResult result;
-  candidateObjectPairs(db, ws.containers, ws.objectPairs);  // the pairs whose containers meet
+  if (options.onlyPairs) candidateObjectPairsAmong(db, *options.onlyPairs, ws.containers, ws.objectPairs);
+  else candidateObjectPairs(db, ws.containers, ws.objectPairs);  // the pairs whose containers meet
   for (const auto& [a, b] : ws.objectPairs) {
     // In a static-moving pair the moving object is `a`, so that the normal points from
     // the ground (or wall) towards what rests on it.

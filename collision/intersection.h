@@ -21,6 +21,11 @@ struct IntersectionOptions {
   /// Return as soon as one pair interpenetrates (its depth is then a lower bound), for
   /// callers that only need the verdict, such as collisionDetect()'s bisection.
   bool stopAtInterpenetration = false;
+  /// When set, only these pairs of objects (i < j each, sorted) are tested, in place of
+  /// the sweep and prune over all objects: the caller promises that no other pair is
+  /// within the tolerance (collisionDetect() gives the pairs that can meet in its
+  /// interval). The result is the same, at the cost of the pairs given.
+  const std::vector<std::pair<int, int>>* onlyPairs = nullptr;
 };
 
 struct IntersectionResult {

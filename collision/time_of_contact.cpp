@@ -149,9 +149,7 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
   }
 
   if (!found.atTime) {
-    db.setTime(found.time);
-    found.atTime = test4Intersection(db, s.ws);
-    ++s.tests;
+    found.atTime = s.statusAt(found.time, true);
   }
   result.time = found.time;
   result.status = found.atTime->status;

@@ -19,6 +19,7 @@ IntersectionResult Search::statusAt(double t, bool contacts) {
   ++tests;
   IntersectionOptions options;
   options.contacts = contacts;
+  options.onlyPairs = &meeting;  // no other pair comes within the tolerance in the interval
   return test4Intersection(db, ws, options);
 }
 
