@@ -4,6 +4,7 @@
 #include <functional>
 #include <limits>
 
+#include "collision/convex_separation.h"
 #include "collision/tolerances.h"
 
 namespace polysim::collision {
@@ -45,11 +46,11 @@ std::optional<PairResult> ContactReuse::find(const ObjectDatabase& db, int a, in
   const double drift = displacementBound(relativePose(A, B), k.X_BA, k.reachA);
   const double eps = db.tolerance;
   if (!(drift <= kContactReuseFraction * eps)) return std::nullopt;
-  // Every gap moved by at most `drift`: the deepest stays short of interpenetrating and
-  // some feature stays inside the band, so the pair is still in contact.
+  // The separation and every gap moved by at most `drift`: the pair stays short of
+  // interpenetrating and some feature stays inside the band, so it is still in contact.
   double deepest = std::numeric_limits<double>::infinity();
   for (const Contact& c : k.contacts) deepest = std::min(deepest, c.separation);
-  if (!(deepest - drift > -eps && deepest + drift <= eps)) return std::nullopt;
+  if (!(k.separation - drift > -eps && deepest + drift <= eps)) return std::nullopt;
   k.usedAt = query_;
   ++reused_;
   PairResult pair;
@@ -65,7 +66,10 @@ void ContactReuse::keep(const ObjectDatabase& db, const PairResult& pair) {
   const ObjNode& A = db.objects[pair.a];
   const ObjNode& B = db.objects[pair.b];
   if (!enabled_ || A.id < 0 || B.id < 0 || pair.status != Status::Contact || pair.contacts.empty()) return;
+  const std::optional<double> separation = convexSeparation(A, B);
+  if (!separation) return;
   Kept k;
+  k.separation = *separation;
   k.meshA = A.mesh.get();
   k.meshB = B.mesh.get();
   k.X_BA = relativePose(A, B);

@@ -180,8 +180,11 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     // a pair interpenetrating at once (see kStalledGapFraction); push them apart.
     const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
                                                 : -kStalledGapFraction * db_.tolerance;
-    // A stalled event is solved on the detector's own contacts, which it disagrees with.
-    std::vector<collision::PairResult> solved = elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : contacts;
+    // A stalled event is solved on the detector's own contacts, which it disagrees with,
+    // every pair found in the wide band (kWideBandFactor).
+    const auto everyPair = [](const collision::PairResult&) { return true; };
+    std::vector<collision::PairResult> solved =
+        elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : withWideBand(db, islandIds_, contacts, everyPair);
     resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
     if (supportTouchingBodies(contacts, remaining)) {           // bodies that landed take the rest of the step's gravity,
       if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),
@@ -210,6 +213,18 @@ collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
 
 std::vector<collision::PairResult> World::solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                          const std::vector<collision::PairResult>& touching) {
+  const std::vector<collision::PairResult> speculated = speculativeContacts(db, bodyOf, touching);
+  const auto notConvex = [&](int k) { return !db.objects[k].mesh->convex() && awake(bodyOf.empty() ? k : bodyOf[k]); };
+  bool any = false;
+  for (int k = 0; k < static_cast<int>(db.objects.size()) && !any; ++k) any = notConvex(k);
+  if (!any) return speculated;
+  return withWideBand(db, bodyOf, speculated, [this](const collision::PairResult& p) {
+    return (!db_.objects[p.a].mesh->convex() || !db_.objects[p.b].mesh->convex()) && !bounces(p);
+  });
+}
+
+std::vector<collision::PairResult> World::speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
+                                                              const std::vector<collision::PairResult>& touching) {
   if (scene_.contact.speculativeReach <= 0.0) return touching;
   // Bodies flying free keep their exact parabolas and impacts (backed up to just
   // contact), and so do pairs that bounce; a sleeping body is moved by no solve. Only
@@ -225,6 +240,16 @@ std::vector<collision::PairResult> World::solverContacts(const collision::Object
   };
   return withSpeculativeContacts(db, workspace_, scene_.contact.speculativeReach, bodyOf, touching, roleOf,
                                  [this](const collision::PairResult& p) { return !bounces(p); });
+}
+
+std::vector<collision::PairResult> World::withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
+                                                      const std::vector<collision::PairResult>& contacts,
+                                                      const std::function<bool(const collision::PairResult&)>& widen) {
+  const auto roleOf = [&](int k) {  // a sleeping body is moved by no solve
+    const int i = bodyOf.empty() ? k : bodyOf[k];
+    return !bodies_[i].isStatic && asleep_[i] ? SpeculativeRole::Left : SpeculativeRole::Moving;
+  };
+  return withSpeculativeContacts(db, workspace_, kWideBandFactor * db.tolerance, bodyOf, contacts, roleOf, widen);
 }
 
 bool World::bounces(const collision::PairResult& pair) const {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <random>
 
+#include "collision/convex_separation.h"
 #include "collision/intersection.h"
 #include "collision/shapes.h"
 #include "collision/tolerances.h"
@@ -58,9 +59,17 @@ ObjectDatabase randomPairInContact(std::mt19937& rng, const std::vector<std::sha
   return db;
 }
 
+// Convex shapes with separating axes (a box, a hexagonal prism, an icosahedron), a
+// convex one with too many faces for them (an icosphere) and two non-convex ones.
 std::vector<std::shared_ptr<PolygonMesh>> testShapes() {
-  return {std::make_shared<PolygonMesh>(makeBox(V3(1, 0.6, 0.8))), std::make_shared<PolygonMesh>(makeIcosphere(0.6, 1)),
-          std::make_shared<PolygonMesh>(test::makeStaple()), std::make_shared<PolygonMesh>(test::makeCup(1.0, 0.6, 0.1, 0.1))};
+  return {std::make_shared<PolygonMesh>(makeBox(V3(1, 0.6, 0.8))), std::make_shared<PolygonMesh>(test::makeHexPrism(0.5, 0.8)),
+          std::make_shared<PolygonMesh>(makeIcosphere(0.6, 0)),   std::make_shared<PolygonMesh>(makeIcosphere(0.6, 1)),
+          std::make_shared<PolygonMesh>(test::makeStaple()),      std::make_shared<PolygonMesh>(test::makeCup(1.0, 0.6, 0.1, 0.1))};
+}
+
+// Whether the pair's verdict is the separating axis test's, the only pairs reuse keeps.
+bool keepable(const ObjectDatabase& db) {
+  return hasSeparatingAxes(*db.objects[0].mesh) && hasSeparatingAxes(*db.objects[1].mesh);
 }
 
 double deepestGap(const PairResult& pair) {
@@ -87,9 +96,10 @@ void expectSameContacts(const PairResult& reused, const PairResult& fresh, doubl
 TEST(ContactReuse, APairMovedRigidlyKeepsItsContactsCarriedWithIt) {
   std::mt19937 rng(20261130);
   const auto shapes = testShapes();
-  int reusedPairs = 0;
+  int reusedPairs = 0, keepablePairs = 0;
   for (int trial = 0; trial < 60; ++trial) {
     ObjectDatabase db = randomPairInContact(rng, shapes);
+    keepablePairs += keepable(db);
     IntersectionWorkspace ws;
     ws.reuse.enable();
     const IntersectionResult first = test4Intersection(db, ws);
@@ -100,22 +110,26 @@ TEST(ContactReuse, APairMovedRigidlyKeepsItsContactsCarriedWithIt) {
     for (ObjNode& o : db.objects) o.X_WO = carry * o.X_WO;
     const IntersectionResult again = test4Intersection(db, ws);
     const IntersectionResult fresh = test4Intersection(db);
-    ASSERT_EQ(again.pairsReused, 1) << "trial " << trial;
-    EXPECT_EQ(again.polygonPairsTested, 0) << "trial " << trial;
+    ASSERT_EQ(again.pairsReused, keepable(db) ? 1 : 0) << "trial " << trial;
+    if (keepable(db)) {
+      EXPECT_EQ(again.polygonPairsTested, 0) << "trial " << trial;
+    }
     ASSERT_EQ(again.pairs.size(), 1u);
     EXPECT_EQ(again.pairs[0].status, fresh.pairs[0].status);
     expectSameContacts(again.pairs[0], fresh.pairs[0], 1e-9, trial);
     reusedPairs += again.pairsReused;
   }
-  EXPECT_EQ(reusedPairs, 60);
+  EXPECT_EQ(reusedPairs, keepablePairs);
+  EXPECT_GE(keepablePairs, 8);
 }
 
 TEST(ContactReuse, ReusedWithinTheDriftAndTestedAfreshBeyondIt) {
   std::mt19937 rng(7);
   const auto shapes = testShapes();
-  int within = 0, beyond = 0;
+  int within = 0, beyond = 0, keepablePairs = 0;
   for (int trial = 0; trial < 80; ++trial) {
     ObjectDatabase db = randomPairInContact(rng, shapes);
+    keepablePairs += keepable(db);
     const double eps = db.tolerance, limit = kContactReuseFraction * eps;
     IntersectionWorkspace ws;
     ws.reuse.enable();
@@ -140,7 +154,8 @@ TEST(ContactReuse, ReusedWithinTheDriftAndTestedAfreshBeyondIt) {
     beyond += far.pairsReused == 0;
   }
   // A pair kept at the band's very edge is tested afresh even within the drift; most are not.
-  EXPECT_GT(within, 60);
+  EXPECT_GT(within, 3 * keepablePairs / 4);
+  EXPECT_GT(keepablePairs, 15);
   EXPECT_EQ(beyond, 80);
 }
 
@@ -208,6 +223,49 @@ TEST(ContactReuse, AtTheBandsEdgeAPairIsTestedAfresh) {
       EXPECT_EQ(r.status, after);
     }
   }
+}
+
+// Random pairs, convex and not, kept just short of interpenetrating and then moved
+// across that edge by less than the drift limit: the status follows a fresh test. The
+// edge is found by bisection along a random direction between a state in contact and
+// one interpenetrating. For a cup or a staple the verdict is the polygons' depth, which
+// may lie deeper than any contact's gap: a guard that read only the gaps kept such a
+// pair in contact after a fresh test found it interpenetrating, and a column of cups
+// went on from that state until its next interval began interpenetrating.
+TEST(ContactReuse, APairMovedAcrossTheInterpenetrationEdgeWithinTheDriftIsTestedAfresh) {
+  std::mt19937 rng(31);
+  const auto shapes = testShapes();
+  int crossed = 0;
+  for (int trial = 0; trial < 80; ++trial) {
+    ObjectDatabase db = randomPairInContact(rng, shapes);
+    const double eps = db.tolerance, limit = kContactReuseFraction * eps;
+    const Eigen::Isometry3d inContact = db.objects[0].X_WO;
+    const V3 toB = (db.objects[1].X_WO.translation() - inContact.translation()).normalized();
+    const auto at = [&](double s) {
+      db.objects[0].X_WO = inContact;
+      db.objects[0].X_WO.translation() += s * toB;
+      return test4Intersection(db).status;
+    };
+    double contact = 0.0, inside = 0.05;
+    if (at(inside) != Status::Interpenetrating) continue;
+    while (inside - contact > 0.05 * limit) {
+      const double s = 0.5 * (contact + inside);
+      const Status st = at(s);
+      if (st == Status::Separate) break;  // not one edge along this line
+      (st == Status::Contact ? contact : inside) = s;
+    }
+    if (inside - contact > 0.05 * limit || at(contact) != Status::Contact) continue;
+    IntersectionWorkspace ws;
+    ws.reuse.enable();
+    db.objects[0].X_WO = inContact;
+    db.objects[0].X_WO.translation() += contact * toB;
+    ASSERT_EQ(test4Intersection(db, ws).status, Status::Contact) << "trial " << trial;
+    ASSERT_EQ(at(inside), Status::Interpenetrating) << "trial " << trial;  // moved by under 0.05 of the limit
+    EXPECT_EQ(test4Intersection(db, ws).status, Status::Interpenetrating)
+        << "trial " << trial << ", convex " << db.objects[0].mesh->convex() << db.objects[1].mesh->convex();
+    ++crossed;
+  }
+  EXPECT_GT(crossed, 40);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "collision/intersection.h"
 #include "sim/scene.h"
 #include "sim/scene_generators.h"
 #include "sim/world.h"
@@ -48,6 +49,24 @@ inline int bodyIndex(const World& w, const std::string& name) {
   ADD_FAILURE() << "no body " << name;
   return 0;
 }
+
+// A fresh test4Intersection() of the world at its current poses, with no contact reuse
+// and no state kept between calls: whether a committed state interpenetrates, judged
+// without trusting what the step loop reported or kept.
+class FreshVerdict {
+ public:
+  explicit FreshVerdict(const Scene& scene) : db_(buildObjectDatabase(scene)) {}
+  bool interpenetrating(const World& w) {
+    for (size_t i = 0; i < db_.objects.size(); ++i) db_.objects[i].X_WO = w.bodies()[i].pose();
+    collision::IntersectionOptions verdictOnly;
+    verdictOnly.contacts = false;
+    verdictOnly.stopAtInterpenetration = true;
+    return collision::test4Intersection(db_, verdictOnly).status == collision::Status::Interpenetrating;
+  }
+
+ private:
+  collision::ObjectDatabase db_;
+};
 
 // Runs the world for `seconds`, calling f after each step.
 template <class F>
