@@ -180,11 +180,8 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     // a pair interpenetrating at once (see kStalledGapFraction); push them apart.
     const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
                                                 : -kStalledGapFraction * db_.tolerance;
-    // A stalled event is solved on the detector's own contacts, which it disagrees with,
-    // every pair found in the wide band (kWideBandFactor).
-    const auto everyPair = [](const collision::PairResult&) { return true; };
-    std::vector<collision::PairResult> solved =
-        elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : withWideBand(db, islandIds_, contacts, everyPair);
+    // A stalled event is solved on the detector's own contacts, which it disagrees with.
+    std::vector<collision::PairResult> solved = elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : contacts;
     resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
     if (supportTouchingBodies(contacts, remaining)) {           // bodies that landed take the rest of the step's gravity,
       if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),

@@ -36,15 +36,15 @@ inline constexpr int kMaxEventsPerStep = 8;
 /// at once, and every event would return to the same state.
 inline constexpr double kStalledGapFraction = 0.5;
 
-/// The contacts of a pair with a body that is not convex, and every contact of a stalled
-/// event, are found in a band this many tolerances wide, not one. Such a pair is judged by
-/// its polygons' depth, and what that verdict holds within the band its contacts may not
-/// report: a cup's rim edge 100.9 um behind the wall of the cup in it is 99.5 um inside
-/// the rim by the verdict (in contact at a tolerance of 100 um), yet its plane gap is past
-/// the band and no contact holds it. The solver let it sink at 0.13 m/s, 4 us later the
-/// verdict found it interpenetrating, and each event of the step fell at its start. In
-/// the wider band that edge has a contact the solver holds. Convex pairs are judged by the
-/// separating axis test, which their contacts' gaps follow, and speculate further anyway.
+/// The solver's contacts of a pair with a body that is not convex are found in a band
+/// this many tolerances wide, not one. Such a pair is judged by its polygons' depth, and
+/// what that verdict holds within the band its contacts may not report: a cup's rim edge
+/// 100.9 um behind the wall of the cup in it is 99.5 um inside the rim by the verdict (in
+/// contact at a tolerance of 100 um), yet its plane gap is past the band and no contact
+/// held it. The solver let it sink at 0.13 m/s, 4 us later the verdict found it
+/// interpenetrating, and each event of the step fell at its start. In the wider band that
+/// edge has a contact the solver holds. Convex pairs are judged by the separating axis
+/// test, which their contacts' gaps follow, and speculate further anyway.
 inline constexpr double kWideBandFactor = 2.0;
 
 /// A contact point is taken for last solve's point of the same pair when it lies within
