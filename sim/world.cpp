@@ -210,14 +210,7 @@ collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
 
 std::vector<collision::PairResult> World::solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                          const std::vector<collision::PairResult>& touching) {
-  const std::vector<collision::PairResult> speculated = speculativeContacts(db, bodyOf, touching);
-  const auto notConvex = [&](int k) { return !db.objects[k].mesh->convex() && awake(bodyOf.empty() ? k : bodyOf[k]); };
-  bool any = false;
-  for (int k = 0; k < static_cast<int>(db.objects.size()) && !any; ++k) any = notConvex(k);
-  if (!any) return speculated;
-  return withWideBand(db, bodyOf, speculated, [this](const collision::PairResult& p) {
-    return (!db_.objects[p.a].mesh->convex() || !db_.objects[p.b].mesh->convex()) && !bounces(p);
-  });
+  return withWideBand(db, bodyOf, speculativeContacts(db, bodyOf, touching));
 }
 
 std::vector<collision::PairResult> World::speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
@@ -240,13 +233,19 @@ std::vector<collision::PairResult> World::speculativeContacts(const collision::O
 }
 
 std::vector<collision::PairResult> World::withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                      const std::vector<collision::PairResult>& contacts,
-                                                      const std::function<bool(const collision::PairResult&)>& widen) {
+                                                      const std::vector<collision::PairResult>& contacts) {
+  const auto bodyAt = [&](int k) { return bodyOf.empty() ? k : bodyOf[k]; };
+  bool any = false;  // an awake body that is not convex: without one, no pair is widened
+  for (int k = 0; k < static_cast<int>(db.objects.size()) && !any; ++k) any = !db.objects[k].mesh->convex() && awake(bodyAt(k));
+  if (!any) return contacts;
   const auto roleOf = [&](int k) {  // a sleeping body is moved by no solve
-    const int i = bodyOf.empty() ? k : bodyOf[k];
+    const int i = bodyAt(k);
     return !bodies_[i].isStatic && asleep_[i] ? SpeculativeRole::Left : SpeculativeRole::Moving;
   };
-  return withSpeculativeContacts(db, workspace_, kWideBandFactor * db.tolerance, bodyOf, contacts, roleOf, widen);
+  const auto notConvexPair = [this](const collision::PairResult& p) {  // and not bouncing: impacts back up to just contact
+    return (!db_.objects[p.a].mesh->convex() || !db_.objects[p.b].mesh->convex()) && !bounces(p);
+  };
+  return withSpeculativeContacts(db, workspace_, kWideBandFactor * db.tolerance, bodyOf, contacts, roleOf, notConvexPair);
 }
 
 bool World::bounces(const collision::PairResult& pair) const {

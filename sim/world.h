@@ -2,7 +2,6 @@
 // The step loop: the user's design, a minimal integrator whose every step calls
 // collisionDetect(), backs up to the contact time, resolves the contacts and goes on.
 
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -134,11 +133,11 @@ class World {
   /// The pair has restitution and some contact point approaches faster than
   /// kBounceThreshold: the solve will bounce it.
   bool bounces(const collision::PairResult& pair) const;
-  /// `contacts`, with the pairs of awake bodies in `db` that `widen` accepts tested again
-  /// in a band kWideBandFactor tolerances wide (objects mapped to bodies by `bodyOf`).
+  /// `contacts`, with the pairs of awake bodies in `db` that have a body that is not
+  /// convex (and do not bounce) tested again in a band kWideBandFactor tolerances wide
+  /// (objects mapped to bodies by `bodyOf`, empty: the same).
   std::vector<collision::PairResult> withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                  const std::vector<collision::PairResult>& contacts,
-                                                  const std::function<bool(const collision::PairResult&)>& widen);
+                                                  const std::vector<collision::PairResult>& contacts);
   /// What the solver is given for `touching` (the contacts within the tolerance): with
   /// the speculative contacts of settled bodies (speculative_contacts.h) found in `db`
   /// (objects mapped to bodies by `bodyOf`, empty: the same), and the pairs with a body
