@@ -12,7 +12,6 @@
 #include "dynamics/settings.h"
 #include "dynamics/sleep.h"
 #include "sim/islands.h"
-#include "sim/speculative_contacts.h"
 
 namespace polysim::sim {
 
@@ -206,57 +205,6 @@ collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
     }
   }
   return islandDb_;
-}
-
-std::vector<collision::PairResult> World::solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                         const std::vector<collision::PairResult>& touching) {
-  return withWideBand(db, bodyOf, speculativeContacts(db, bodyOf, touching));
-}
-
-std::vector<collision::PairResult> World::speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                              const std::vector<collision::PairResult>& touching) {
-  if (scene_.contact.speculativeReach <= 0.0) return touching;
-  // Bodies flying free keep their exact parabolas and impacts (backed up to just
-  // contact), and so do pairs that bounce; a sleeping body is moved by no solve. Only
-  // convex bodies: in a band as wide as the reach, the creases of a cup in a cup are
-  // judged against walls that do not touch (a frictionless column of cups gained 0.09 J
-  // and slid 9 mm in 4 s). Bodies at rest at the step's start are tested only against
-  // moving ones, so a resting stack pays nothing.
-  const auto roleOf = [&](int k) {
-    const int i = bodyOf.empty() ? k : bodyOf[k];
-    if (!db_.objects[i].mesh->convex() || (!bodies_[i].isStatic && (asleep_[i] || free_[i])))
-      return SpeculativeRole::Left;
-    return bodies_[i].isStatic || still_[i] ? SpeculativeRole::Still : SpeculativeRole::Moving;
-  };
-  return withSpeculativeContacts(db, workspace_, scene_.contact.speculativeReach, bodyOf, touching, roleOf,
-                                 [this](const collision::PairResult& p) { return !bounces(p); });
-}
-
-std::vector<collision::PairResult> World::withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                      const std::vector<collision::PairResult>& contacts) {
-  const auto bodyAt = [&](int k) { return bodyOf.empty() ? k : bodyOf[k]; };
-  bool any = false;  // an awake body that is not convex: without one, no pair is widened
-  for (int k = 0; k < static_cast<int>(db.objects.size()) && !any; ++k) any = !db.objects[k].mesh->convex() && awake(bodyAt(k));
-  if (!any) return contacts;
-  const auto roleOf = [&](int k) {  // a sleeping body is moved by no solve
-    const int i = bodyAt(k);
-    return !bodies_[i].isStatic && asleep_[i] ? SpeculativeRole::Left : SpeculativeRole::Moving;
-  };
-  const auto notConvexPair = [this](const collision::PairResult& p) {  // and not bouncing: impacts back up to just contact
-    return (!db_.objects[p.a].mesh->convex() || !db_.objects[p.b].mesh->convex()) && !bounces(p);
-  };
-  return withSpeculativeContacts(db, workspace_, kWideBandFactor * db.tolerance, bodyOf, contacts, roleOf, notConvexPair);
-}
-
-bool World::bounces(const collision::PairResult& pair) const {
-  const PairMaterial& a = materials_[pair.a];
-  const PairMaterial& b = materials_[pair.b];
-  if (std::max(a.restitution, b.restitution) <= 0) return false;
-  for (const collision::Contact& c : pair.contacts)
-    for (const Eigen::Vector3d& x : c.points)
-      if (c.normal.dot(bodies_[pair.a].velocityAt(x) - bodies_[pair.b].velocityAt(x)) < -dynamics::kBounceThreshold)
-        return true;
-  return false;
 }
 
 void World::stopTouchingBodies(const std::vector<collision::PairResult>& contacts) {
