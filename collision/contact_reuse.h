@@ -42,8 +42,10 @@ class ContactReuse {
   /// Keeps the full test's result of a pair of convex objects in contact (others are
   /// not kept), with their separation by the separating axis test.
   void keep(const ObjectDatabase& db, const PairResult& pair);
-  /// Ends one test of the database: results no test has used for kStaleQueries tests
-  /// are dropped, so the memory follows the pairs in contact, not every pair ever seen.
+  /// Ends one test of the database with contacts: results no test has used for
+  /// kStaleQueries such tests are dropped, so the memory follows the pairs in contact, not
+  /// every pair ever seen. Verdict-only tests do not count: collisionDetect() leaves out
+  /// of them pairs that cannot interpenetrate, which still rest and are still wanted.
   void endQuery();
   /// How many pairs were reused since construction.
   long reused() const { return reused_; }

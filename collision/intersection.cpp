@@ -36,6 +36,12 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
     result.depth = -*separation;
     return result;
   }
+  // Convex objects that overlap (no separating axis) touch; when only the verdict is
+  // wanted, the polygons would only confirm it. Resting pairs sit here, inside the band.
+  if (separation && *separation <= 0.0 && !options.contacts) {
+    result.status = Status::Contact;
+    return result;
+  }
   const DepthVerdict verdict = separation ? DepthVerdict::DecidedByCaller : DepthVerdict::Judged;
 
   if (ws.faces.size() < db.objects.size()) ws.faces.resize(db.objects.size());
@@ -141,7 +147,7 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
     result.pairs.push_back(std::move(pair));
     if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) break;
   }
-  ws.reuse.endQuery();
+  if (options.contacts) ws.reuse.endQuery();  // verdict-only tests may skip pairs that still rest
   return result;
 }
 

@@ -155,6 +155,8 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
   result.status = found.atTime->status;
   result.pairs = std::move(found.atTime->pairs);
   result.iterations = s.tests;
+  result.pairsMeeting = static_cast<int>(s.meeting.size());
+  result.pairsWatched = static_cast<int>(s.watched.size());
   result.separations = s.separations;
   result.stoppedBy = found.stop;
   return result;

@@ -48,6 +48,11 @@ struct TocResult {
   /// States whose signed separation regula falsi measured instead of testing them (0
   /// for bisection); a separation of convex objects costs a fraction of a test.
   int separations = 0;
+  /// Pairs that can meet in the interval, and those of them the search's verdict tests
+  /// watched: the pairs that can interpenetrate in it (a settled stack's resting pairs
+  /// cannot while a body lands on top). The contacts returned are of every pair that can meet.
+  int pairsMeeting = 0;
+  int pairsWatched = 0;
   /// Sub-intervals the interval was split into against tunnelling (1: none).
   int subintervals = 1;
   /// False when the split against tunnelling needed more than kMaxSubintervals: some pair

@@ -19,8 +19,22 @@ IntersectionResult Search::statusAt(double t, bool contacts) {
   ++tests;
   IntersectionOptions options;
   options.contacts = contacts;
-  options.onlyPairs = &meeting;  // no other pair comes within the tolerance in the interval
+  options.onlyPairs = contacts ? &meeting : &watched;  // no other pair comes within the tolerance in the interval
   return test4Intersection(db, ws, options);
+}
+
+PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, const PairIds& meeting) {
+  PairIds ids;
+  db.setTime(0.0);
+  const double deepest = -(1.0 - kUnwatchedMarginFraction) * db.tolerance;
+  for (const auto& [a, b] : meeting) {
+    const ObjNode& A = db.objects[a];
+    const ObjNode& B = db.objects[b];
+    const std::optional<double> separation = convexSeparation(A, B);
+    if (!separation || *separation - (A.motionBound + B.motionBound) <= deepest) ids.emplace_back(a, b);
+  }
+  db.setTime(1.0);
+  return ids;
 }
 
 namespace {

@@ -21,17 +21,25 @@ using PairIds = std::vector<std::pair<int, int>>;
 /// static, and their world boxes grown by their motion bounds overlap.
 PairIds pairsThatCanMeet(const ObjectDatabase& db);
 
+/// The pairs of `meeting` that may interpenetrate somewhere in the interval: all but the
+/// convex pairs with separating axes whose separation at t = 0, less the motion bounds of
+/// both, stays above minus the tolerance (kUnwatchedMarginFraction): a pair resting in a
+/// settled stack, while a body lands on top. Leaves the database at t = 1.
+PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, const PairIds& meeting);
+
 /// The state of the search: the database, its workspace, the pairs that can meet in the
-/// interval and the count of tests made.
+/// interval, those of them that can interpenetrate, and the count of tests made.
 struct Search {
   ObjectDatabase& db;
   IntersectionWorkspace& ws;
   PairIds meeting = pairsThatCanMeet(db);
+  PairIds watched = pairsThatCanInterpenetrate(db, meeting);
   int tests = 0;
   int separations = 0;  // states whose signed separation was measured
 
-  /// Sets the database to time t and returns the status of every pair, with their
-  /// contacts when asked.
+  /// Sets the database to time t and returns the status of the pairs: with their
+  /// contacts, of every pair that can meet; without, only of those watched (a pair that
+  /// cannot interpenetrate decides nothing in the search).
   IntersectionResult statusAt(double t, bool contacts = false);
 };
 

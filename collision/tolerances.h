@@ -122,6 +122,13 @@ inline constexpr int kMaxTimeOfContactIterations = 100;
 /// fraction of the thinner object's thickness, so that nothing passes through unseen.
 inline constexpr double kTunnelingSafety = 0.5;
 
+/// collisionDetect() leaves out of its verdict-only tests a convex pair whose separation
+/// at the interval's start, less the motion both may make in it, stays above minus the
+/// tolerance by at least this fraction of it (it cannot interpenetrate anywhere in the
+/// interval: the separation moves by no more than the motion). Far above the round-off
+/// of the separating axis test, far below the quarter band the solver lets pairs sink.
+inline constexpr double kUnwatchedMarginFraction = 1e-3;
+
 /// Most sub-intervals collisionDetect() splits an interval into against tunnelling;
 /// beyond it the no-tunnelling guarantee is not kept (the result says so).
 inline constexpr int kMaxSubintervals = 4096;

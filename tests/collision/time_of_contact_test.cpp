@@ -13,6 +13,7 @@
 #include "collision/shapes.h"
 #include "collision/tolerances.h"
 #include "sim/kinematic_motion.h"
+#include "tests/collision/toc_world.h"
 #include "tests/test_support.h"
 
 namespace polysim::collision {
@@ -22,43 +23,7 @@ using test::pose;
 using V3 = Eigen::Vector3d;
 
 constexpr double kEps = kDefaultContactTolerance;
-
-using sim::KinematicMotion;  // constant velocity and angular velocity, here over an interval of 1
-
-// A database of objects, some of them moving; motion bounds filled in.
-class World {
- public:
-  explicit World(double eps = kEps) { db.tolerance = eps; }
-  int addStatic(const MeshData& mesh, const Eigen::Isometry3d& X) {
-    return db.add("static" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, true);
-  }
-  int addMoving(const MeshData& mesh, const Eigen::Isometry3d& X, const V3& v, const V3& w = V3::Zero()) {
-    motions_.push_back(std::make_unique<KinematicMotion>(KinematicMotion{X, v, w, 1.0}));
-    const int id = addOnPath(mesh, X, sim::kinematicPose, motions_.back().get(), 0.0);
-    db.objects[id].motionBound = sim::kinematicMotionBound(*motions_.back(), *db.objects[id].mesh);
-    return id;
-  }
-  // A moving object on its own path: `ctrans` sets its pose at t from `info`; it moves
-  // at most `motionBound` (m) over [0, 1].
-  int addOnPath(const MeshData& mesh, const Eigen::Isometry3d& X, TransformUpdate ctrans, const void* info, double motionBound) {
-    const int id = db.add("moving" + std::to_string(db.objects.size()), std::make_shared<PolygonMesh>(mesh), X, false);
-    ObjNode& node = db.objects[id];
-    node.ctrans = ctrans;
-    node.info = info;
-    node.motionBound = motionBound;
-    return id;
-  }
-  TocResult detect(TocMethod method) {
-    db.setTime(1.0);
-    TocOptions options;
-    options.method = method;
-    return collisionDetect(db, options);
-  }
-  ObjectDatabase db;
-
- private:
-  std::vector<std::unique_ptr<KinematicMotion>> motions_;
-};
+using test::TocWorld;
 
 // Time tolerance for a method: the contact band over the approach speed (per interval).
 double timeTolerance(TocMethod method, double approachSpeed) {
@@ -73,7 +38,7 @@ const Eigen::Isometry3d kSlabPose = pose(V3(0, 0, -0.5));  // top at z = 0
 class TimeOfContact : public ::testing::TestWithParam<TocMethod> {};
 
 TEST_P(TimeOfContact, BoxFallingOntoSlab) {
-  World w;
+  TocWorld w;
   w.addStatic(kSlab, kSlabPose);
   w.addMoving(kCube, pose(V3(0, 0, 2.0)), V3(0, 0, -2.0));  // bottom from 1.5 to -0.5: contact at 0.75
   const TocResult r = w.detect(GetParam());
@@ -89,7 +54,7 @@ TEST_P(TimeOfContact, BoxTurningOntoItsEdge) {
   // is at h - cos(pi/4 - theta)/sqrt(2), so it meets the floor at pi/4 - acos(h sqrt 2).
   for (double h : {0.52, 0.6, 0.68}) {
     SCOPED_TRACE("h = " + std::to_string(h));
-    World w;
+    TocWorld w;
     w.addStatic(kSlab, kSlabPose);
     w.addMoving(kCube, pose(V3(0, 0, h)), V3::Zero(), V3(1, 0, 0));
     const double expected = M_PI / 4 - std::acos(h * std::sqrt(2.0));
@@ -114,7 +79,7 @@ TEST_P(TimeOfContact, BoxTurningOntoItsEdge) {
 }
 
 TEST_P(TimeOfContact, TwoBoxesHeadOn) {
-  World w;
+  TocWorld w;
   w.addMoving(kCube, pose(V3(-2, 0, 0)), V3(2, 0, 0));
   w.addMoving(kCube, pose(V3(2, 0, 0)), V3(-2, 0, 0));  // gap 3 closing at 4: contact at 0.75
   const TocResult r = w.detect(GetParam());
@@ -123,7 +88,7 @@ TEST_P(TimeOfContact, TwoBoxesHeadOn) {
 }
 
 TEST_P(TimeOfContact, MotionThatNeverReaches) {
-  World w;
+  TocWorld w;
   w.addStatic(kSlab, kSlabPose);
   w.addMoving(kCube, pose(V3(0, 0, 3.0)), V3(0, 0, -1.0));
   const TocResult r = w.detect(GetParam());
@@ -133,7 +98,7 @@ TEST_P(TimeOfContact, MotionThatNeverReaches) {
 }
 
 TEST_P(TimeOfContact, BoxSlidingAlongTheFloor) {
-  World w;
+  TocWorld w;
   w.addStatic(kSlab, kSlabPose);
   w.addMoving(kCube, pose(V3(0, 0, 0.5)), V3(1.5, 0, 0));
   const TocResult r = w.detect(GetParam());
@@ -145,7 +110,7 @@ TEST_P(TimeOfContact, BoxSlidingAlongTheFloor) {
 TEST_P(TimeOfContact, BoxSlidingWithinTheContactBand) {
   // Half the tolerance into the floor: overlapping along every axis, yet in contact, not
   // interpenetrating; nothing to back up from.
-  World w;
+  TocWorld w;
   w.addStatic(kSlab, kSlabPose);
   w.addMoving(kCube, pose(V3(0, 0, 0.5 - 0.5 * kEps)), V3(1.5, 0, 0));
   const TocResult r = w.detect(GetParam());
@@ -155,7 +120,7 @@ TEST_P(TimeOfContact, BoxSlidingWithinTheContactBand) {
 }
 
 TEST_P(TimeOfContact, SmallBoxLandsOnTheCupsFloorNotItsRim) {
-  World w;
+  TocWorld w;
   // Cup: 3 x 3 outside, 2 high, 0.5 walls, floor 0.5 thick: cavity floor at z = 0.5.
   w.addStatic(test::makeCup(1.5, 2.0, 0.5, 0.5), pose(V3::Zero()));
   w.addMoving(makeBox(V3(0.5, 0.5, 0.5)), pose(V3(0, 0, 3.0)), V3(0, 0, -3.0));  // bottom 2.75 -> -0.25
@@ -168,7 +133,7 @@ TEST_P(TimeOfContact, SmallBoxLandsOnTheCupsFloorNotItsRim) {
 }
 
 TEST_P(TimeOfContact, FastSmallBoxIsCaughtByAThinPlate) {
-  World w;
+  TocWorld w;
   w.addStatic(makeBox(V3(10, 10, 0.01)), pose(V3::Zero()));  // top at 0.005
   // 0.1 box moving 10 m in the interval: at t = 1 it is far below, clear of the plate.
   // The contact falls inside a sub-interval (not at an end), after hundreds of scan
@@ -183,7 +148,7 @@ TEST_P(TimeOfContact, FastSmallBoxIsCaughtByAThinPlate) {
 }
 
 TEST_P(TimeOfContact, TouchingObjectsMovingApart) {
-  World w;
+  TocWorld w;
   w.addStatic(kSlab, kSlabPose);
   w.addMoving(kCube, pose(V3(0, 0, 0.5)), V3(0, 0, 1.0));
   const TocResult r = w.detect(GetParam());
@@ -205,7 +170,7 @@ TEST_P(TimeOfContact, TouchingPairPressingOnIsBracketedToTheTolerance) {
   for (double gap : {0.0, 0.3 * kEps, 0.9 * kEps})
     for (double speed = 3 * kEps; speed < 500 * kEps; speed *= 1.13) {
       SCOPED_TRACE("gap " + std::to_string(gap / kEps) + " eps, speed " + std::to_string(speed / kEps) + " eps");
-      World w;
+      TocWorld w;
       w.addStatic(kSlab, kSlabPose);
       w.addMoving(kCube, pose(V3(0, 0, 0.5 + gap)), V3(0, 0, -speed));
       const TocResult r = w.detect(GetParam());
@@ -244,7 +209,7 @@ TEST_P(TimeOfContact, BoxRockingOntoItsFaceIsFollowedToTheFaceNotLeftAtItsStart)
   const double tilt = 0.01, turn = 0.02;  // far edge from sin(0.01) up to sin(0.01) down
   for (double resting : {-0.8 * kEps, -0.1 * kEps, 0.0, 0.5 * kEps}) {
     SCOPED_TRACE("resting edge at " + std::to_string(resting / kEps) + " eps");
-    World w;
+    TocWorld w;
     w.addStatic(kSlab, kSlabPose);
     // The unit cube tilted about y: its edge at local x = -0.5, z = -0.5 lowest, at `resting`.
     const Eigen::Matrix3d R = Eigen::AngleAxisd(-tilt, V3::UnitY()).toRotationMatrix();
@@ -267,7 +232,7 @@ TEST_P(TimeOfContact, BoxRockingOntoItsFaceIsFollowedToTheFaceNotLeftAtItsStart)
 }
 
 TEST_P(TimeOfContact, InterpenetrationAtTheStartIsAnErrorNamingThePair) {
-  World w;
+  TocWorld w;
   w.addStatic(kSlab, kSlabPose);
   w.addMoving(kCube, pose(V3(0, 0, 0.3)), V3(0, 0, -1.0));
   try {
@@ -283,7 +248,7 @@ TEST_P(TimeOfContact, NeverReturnsAnInterpenetratingStateOnRandomMotions) {
   std::uniform_real_distribution<double> u(-1, 1);
   int contacts = 0;
   for (int trial = 0; trial < 150; ++trial) {
-    World w;
+    TocWorld w;
     w.addStatic(kSlab, kSlabPose);
     const V3 start(u(rng), u(rng), 1.2 + 0.5 * u(rng));
     const Eigen::Matrix3d R = Eigen::Quaterniond(V3(u(rng), u(rng), u(rng)).normalized().x(), u(rng), u(rng), u(rng))
