@@ -146,6 +146,7 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
   if (bracket) {
     startBracket(s, *bracket, scanByAxes, std::move(atStart));
     found = options.method == TocMethod::Bisection ? bisect(s, *bracket) : regulaFalsi(s, *bracket);
+    result.crossing = std::move(bracket->hiPairs);
   }
 
   if (!found.atTime) {

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "collision/intersection.h"
@@ -48,6 +49,9 @@ struct TocResult {
   /// States whose signed separation regula falsi measured instead of testing them (0
   /// for bisection); a separation of convex objects costs a fraction of a test.
   int separations = 0;
+  /// The pairs (object indices, a < b) found interpenetrating just past `time`: what
+  /// stopped the interval there. Empty when nothing interpenetrated up to t = 1.
+  std::vector<std::pair<int, int>> crossing;
   /// Pairs that can meet in the interval, and those of them the search's verdict tests
   /// watched: the pairs that can interpenetrate in it (a settled stack's resting pairs
   /// cannot while a body lands on top). The contacts returned are of every pair that can meet.

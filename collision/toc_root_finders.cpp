@@ -153,7 +153,7 @@ bool narrowEnough(const Bracket& br, double eps) {
 
 }  // namespace
 
-Found bisect(Search& s, Bracket br) {
+Found bisect(Search& s, Bracket& br) {
   for (int guess = 0; guess < kMaxTimeOfContactIterations; ++guess) {
     if (narrowEnough(br, s.db.tolerance)) return {br.lo, TocStop::TimeTolerance};
     const double t = 0.5 * (br.lo + br.hi);
@@ -191,7 +191,7 @@ double interpolatedRoot(const Sample* p, int n) {
 
 }  // namespace
 
-Found regulaFalsi(Search& s, Bracket br) {
+Found regulaFalsi(Search& s, Bracket& br) {
   const double reach = kSeparationReach * s.db.tolerance;
   const double target = kRootDistanceFraction * s.db.tolerance;
   auto measureAt = [&](double t, const std::optional<Separation>& known) {

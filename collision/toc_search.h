@@ -89,9 +89,11 @@ struct Found {
   std::optional<IntersectionResult> atTime = std::nullopt;
 };
 
-/// The seed's root finder: halves the bracket until the state is contact.
-Found bisect(Search& s, Bracket br);
-/// Regula falsi on the signed separation of the bracket's pairs (TocMethod::RegulaFalsi).
-Found regulaFalsi(Search& s, Bracket br);
+/// The seed's root finder: halves the bracket until the state is contact. Leaves `br`
+/// narrowed to where it stopped (its hiPairs: the pairs interpenetrating just past it).
+Found bisect(Search& s, Bracket& br);
+/// Regula falsi on the signed separation of the bracket's pairs (TocMethod::RegulaFalsi);
+/// leaves `br` as bisect() does.
+Found regulaFalsi(Search& s, Bracket& br);
 
 }  // namespace polysim::collision::toc

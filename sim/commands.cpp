@@ -81,6 +81,9 @@ int tocCommand(const std::string& scenePath, double interval, const std::string&
                    " sub-intervals cover: it may pass through another unseen; shorten the interval";
   j["subintervals"] = r.subintervals;
   j["separations"] = r.separations;
+  j["crossing"] = crossingToJson(r.crossing, bodyNames(scene));
+  j["pairs_meeting"] = r.pairsMeeting;
+  j["pairs_watched"] = r.pairsWatched;
   out << j.dump() << "\n";
   return 0;
 }

@@ -36,6 +36,12 @@ nlohmann::ordered_json toJson(const collision::Contact& c) {
           {"gaps", gaps}};
 }
 
+nlohmann::ordered_json crossingToJson(const std::vector<std::pair<int, int>>& crossing, const std::vector<std::string>& names) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const auto& [a, b] : crossing) list.push_back({names[a], names[b]});
+  return list;
+}
+
 nlohmann::ordered_json pairsToJson(const std::vector<collision::PairResult>& pairs, const std::vector<std::string>& names) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const collision::PairResult& p : pairs) {

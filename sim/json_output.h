@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "collision/intersection.h"
@@ -28,5 +29,8 @@ nlohmann::ordered_json toJson(const collision::Contact& c);
 /// prints it; `names` are the database's object names.
 nlohmann::ordered_json intersectionToJson(const collision::IntersectionResult& r, const std::vector<std::string>& names);
 nlohmann::ordered_json pairsToJson(const std::vector<collision::PairResult>& pairs, const std::vector<std::string>& names);
+/// [["a", "b"], ...]: the pairs collisionDetect() found interpenetrating just past its
+/// returned time (TocResult::crossing), by name.
+nlohmann::ordered_json crossingToJson(const std::vector<std::pair<int, int>>& crossing, const std::vector<std::string>& names);
 
 }  // namespace polysim::sim

@@ -15,6 +15,7 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report, 
     events.push_back({{"time", forOutput(e.time)},
                       {"iterations", e.toc.iterations},
                       {"stopped_by", collision::toString(e.toc.stoppedBy)},
+                      {"crossing", crossingToJson(e.toc.crossing, names)},
                       {"pairs", pairsToJson(e.toc.pairs, names)}});
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
   for (size_t i = 0; i < world.bodies().size(); ++i) {

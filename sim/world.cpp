@@ -36,6 +36,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
   free_.assign(bodies_.size(), 1);
   slowFor_.assign(bodies_.size(), 0.0);
   asleep_.assign(bodies_.size(), 0);
+  eventsOf_.assign(bodies_.size(), 0);
   still_.assign(bodies_.size(), 0);
   for (size_t i = 0; i < bodies_.size(); ++i) {
     paths_[i].body = &bodies_[i];
@@ -157,6 +158,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
   for (const collision::PairResult& p : contacts_)
     if (std::binary_search(island.begin(), island.end(), bodies_[p.a].isStatic ? p.b : p.a)) contacts.push_back(p);
   double remaining = dt;
+  for (int i : island) eventsOf_[i] = 0;
   report_.islands.push_back({static_cast<int>(island.size()), 0});
   for (int& events = report_.islands.back().events; remaining > 0;) {
     predictMotion(island, remaining);                        // each body's path over the rest of the step
@@ -168,8 +170,10 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     noteContacts(contacts, time_ + (dt - remaining));
     if (toc.stoppedBy == collision::TocStop::NoInterpenetration) break;
     toc.pairs = contacts;
+    ++events;
+    const bool bodyAtBound = countEventOfBodies(toc.crossing);
     report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
-    if (++events == kMaxEventsPerStep) {                     // the island's clock stops (see kMaxEventsPerStep)
+    if (bodyAtBound) {                                       // the island's clock stops (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
       if (remaining == dt) stopTouchingBodies(contacts);     // it did not move at all
       else takeBackUnflownGravity(island, remaining);
@@ -320,7 +324,16 @@ collision::TocResult World::detectCollisions(collision::ObjectDatabase& db) {
   collision::TocResult toc = collision::collisionDetect(db, workspace_, tocOptions_);
   for (size_t k = 0; k < islandIds_.size(); ++k) db_.objects[islandIds_[k]].X_WO = db.objects[k].X_WO;
   for (collision::PairResult& p : toc.pairs) p.a = islandIds_[p.a], p.b = islandIds_[p.b];
+  for (auto& [a, b] : toc.crossing) a = islandIds_[a], b = islandIds_[b];
   return toc;
+}
+
+bool World::countEventOfBodies(const std::vector<std::pair<int, int>>& crossing) {
+  bool atBound = false;
+  for (const auto& [a, b] : crossing)
+    for (int i : {a, b})
+      if (!bodies_[i].isStatic) atBound = ++eventsOf_[i] >= kMaxEventsPerStep || atBound;
+  return atBound;
 }
 
 void World::commitPoses(const std::vector<int>& island, double elapsed) {

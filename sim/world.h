@@ -15,15 +15,20 @@
 namespace polysim::sim {
 
 /// Most contact events (collisionDetect() returning before the end of the remaining
-/// step) one island handles in one step. A box bouncing ever lower has infinitely many
-/// bounces in finite time; past this bound the island's clock stops for the rest of the
+/// step, TocResult::crossing naming the pairs) one body takes part in within one step. A
+/// box bouncing ever lower has infinitely many bounces in finite time; when one of its
+/// bodies reaches this bound the island's clock stops for the rest of the
 /// step (poses stay, and so do velocities: a free body gains no gravity for time it did
 /// not fly, or it would gain energy every such step), and the step records that it hit
 /// the bound. An island whose every event fell at the step's start did not move at all:
 /// its bodies that touch something stop (World::stopTouchingBodies), or the gravity they
 /// were given for the step stays in their speed without their falling, every such step.
 /// One that moved part way gives back the gravity for the rest
-/// (World::takeBackUnflownGravity).
+/// (World::takeBackUnflownGravity). Per body, not per island: a settling pile's island
+/// of 800 boxes has a landing of a different box in it a dozen times a step, and a
+/// bound on the island's events (8, before) stopped its clock in 112 of the first 180
+/// steps of a 1000-box pile, 74 boxes at rest at 3 s; counted per body, in 3 steps, and
+/// 938 at rest.
 inline constexpr int kMaxEventsPerStep = 8;
 
 /// An event that makes no progress (collisionDetect() returns the very state it started
@@ -168,6 +173,9 @@ class World {
   collision::ObjectDatabase& databaseFor(const std::vector<int>& island);
   void predictMotion(const std::vector<int>& island, double duration);
   collision::TocResult detectCollisions(collision::ObjectDatabase& db);
+  /// Counts an event against the dynamic bodies of the pairs that caused it (`crossing`,
+  /// body indices); true when one of them has reached kMaxEventsPerStep in this step.
+  bool countEventOfBodies(const std::vector<std::pair<int, int>>& crossing);
   void commitPoses(const std::vector<int>& island, double elapsed);
   void noteContacts(const std::vector<collision::PairResult>& contacts, double at);
   void wake(int body);
@@ -191,6 +199,7 @@ class World {
   std::vector<collision::PairResult> contacts_;
   std::vector<double> slowFor_;  // per body: how long it has been slow (s), dynamics/sleep.h
   std::vector<char> asleep_;     // per body
+  std::vector<int> eventsOf_;    // per body: contact events it took part in this step (kMaxEventsPerStep)
   std::vector<char> still_;      // per body: at rest at the step's start (atRest)
   /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
   /// pairs from the step they fell asleep. Only the step-start solve is kept:

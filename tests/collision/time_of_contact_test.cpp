@@ -47,6 +47,7 @@ TEST_P(TimeOfContact, BoxFallingOntoSlab) {
   ASSERT_EQ(r.pairs.size(), 1u);
   ASSERT_EQ(r.pairs[0].contacts.size(), 1u);
   EXPECT_EQ(r.pairs[0].contacts[0].type, ContactType::Area);
+  EXPECT_EQ(r.crossing, (std::vector<std::pair<int, int>>{{0, 1}}));  // what stopped the interval
 }
 
 TEST_P(TimeOfContact, BoxTurningOntoItsEdge) {
@@ -95,6 +96,7 @@ TEST_P(TimeOfContact, MotionThatNeverReaches) {
   EXPECT_EQ(r.time, 1.0);
   EXPECT_EQ(r.status, Status::Separate);
   EXPECT_EQ(r.stoppedBy, TocStop::NoInterpenetration);
+  EXPECT_TRUE(r.crossing.empty());
 }
 
 TEST_P(TimeOfContact, BoxSlidingAlongTheFloor) {

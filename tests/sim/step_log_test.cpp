@@ -67,7 +67,15 @@ TEST(StepLog, EveryLineHoldsSpecFieldsAndTheLogAgreesWithTheSummary) {
     deepest = std::max(deepest, line["penetration"].get<double>());
     for (const json& e : line["events"]) {
       ++events;
-      for (const char* key : {"time", "iterations", "stopped_by", "pairs"}) ASSERT_TRUE(e.contains(key)) << key;
+      for (const char* key : {"time", "iterations", "stopped_by", "crossing", "pairs"}) ASSERT_TRUE(e.contains(key)) << key;
+      // The pairs that crossed into each other are among the pairs in contact there.
+      ASSERT_FALSE(e["crossing"].empty());
+      for (const json& crossed : e["crossing"]) {
+        bool listed = false;
+        for (const json& p : e["pairs"])
+          listed = listed || (crossed[0] == p["a"] && crossed[1] == p["b"]) || (crossed[0] == p["b"] && crossed[1] == p["a"]);
+        EXPECT_TRUE(listed) << crossed.dump();
+      }
       for (const json& p : e["pairs"])
         for (const json& c : p["contacts"]) {
           EXPECT_TRUE(c["type"] == "point" || c["type"] == "line" || c["type"] == "area") << c.dump();

@@ -30,6 +30,9 @@ TEST(TocCommand, BoxOntoSlabGivesTheContactTimeWithEitherMethod) {
       EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["status"], "contact");
     EXPECT_EQ(j["method"], method);
+    EXPECT_EQ(j["crossing"], nlohmann::json::parse(R"([["slab", "cube"]])"));
+    EXPECT_EQ(j["pairs_meeting"], 1);
+    EXPECT_EQ(j["pairs_watched"], 1);
     EXPECT_NEAR(j["time"].get<double>(), 0.75, collision::kDefaultContactTolerance / 2.0);
     ASSERT_EQ(j["pairs"].size(), 1u);
     EXPECT_EQ(j["pairs"][0]["contacts"][0]["type"], "area");
