@@ -27,8 +27,8 @@ namespace polysim::sim {
 /// (World::takeBackUnflownGravity). Per body, not per island: a settling pile's island
 /// of 800 boxes has a landing of a different box in it a dozen times a step, and a
 /// bound on the island's events (8, before) stopped its clock in 112 of the first 180
-/// steps of a 1000-box pile, 74 boxes at rest at 3 s; counted per body, in 3 steps, and
-/// 938 at rest.
+/// steps of a 1000-box pile, 74 boxes at rest at 3 s; counted per body, in 4 steps, and
+/// 821 at rest.
 inline constexpr int kMaxEventsPerStep = 8;
 
 /// An event that makes no progress (collisionDetect() returns the very state it started
