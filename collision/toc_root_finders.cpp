@@ -19,7 +19,9 @@ IntersectionResult Search::statusAt(double t, bool contacts) {
   ++tests;
   IntersectionOptions options;
   options.contacts = contacts;
-  options.onlyPairs = contacts ? &meeting : &watched;  // no other pair comes within the tolerance in the interval
+  // No other pair comes within the tolerance in the interval; of those, only the watched
+  // can interpenetrate, and a verdict wants nothing else.
+  options.onlyPairs = contacts ? &meeting : &watched;
   return test4Intersection(db, ws, options);
 }
 

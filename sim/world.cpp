@@ -329,10 +329,14 @@ collision::TocResult World::detectCollisions(collision::ObjectDatabase& db) {
 }
 
 bool World::countEventOfBodies(const std::vector<std::pair<int, int>>& crossing) {
-  bool atBound = false;
+  // An event always names a pair (an interpenetration stopped it); were one to name none,
+  // its island's clock stops, so that an island's events stay bounded whatever happens.
+  bool atBound = crossing.empty();
   for (const auto& [a, b] : crossing)
-    for (int i : {a, b})
-      if (!bodies_[i].isStatic) atBound = ++eventsOf_[i] >= kMaxEventsPerStep || atBound;
+    for (int i : {a, b}) {
+      if (bodies_[i].isStatic) continue;
+      if (++eventsOf_[i] >= kMaxEventsPerStep) atBound = true;
+    }
   return atBound;
 }
 
