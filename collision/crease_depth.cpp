@@ -52,9 +52,12 @@ double deepestCrossing(const PolygonView& p, const PolygonView& q, double eps) {
       // pass that edge 1.6 mm away 37 um above the corner, where the bottom face bounds
       // it. Where the next side is a reflex crease or flat (a cup's inner rim edge ends in
       // the inner corner of two walls), the object goes on past the end.
+      // An end is told by the clamped parameters themselves: recomputed from the point, a
+      // rim edge's end came out 1 ulp short of the edge's length, and a cup's bottom edge
+      // passing 1.9 mm beyond it read as a crossing 1.6 mm deep.
+      if (cp.s <= 0.0 || cp.s >= 1.0 || cp.t <= 0.0 || cp.t >= 1.0) continue;  // an end: its vertex's to report
       const double uLength = u.norm(), vLength = v.norm();
-      const double s = u.dot(cp.onFirst - p0) / uLength, t = v.dot(cp.onSecond - q0) / vLength;  // m along each
-      if (s <= 0.0 || s >= uLength || t <= 0.0 || t >= vLength) continue;  // an end: its vertex's to report
+      const double s = cp.s * uLength, t = cp.t * vLength;  // m along each
       if (nearCappedEnd(p, i, s, uLength, cp.distance) || nearCappedEnd(q, j, t, vLength, cp.distance)) continue;
       if (insideCrease(q, j, cp.onFirst) && insideCrease(p, i, cp.onSecond)) deepest = cp.distance;
     }

@@ -33,6 +33,8 @@ SegmentClosestPoints closestPointsOnSegments(const Eigen::Vector3d& p0, const Ei
   out.onFirst = p0 + s * u;
   out.onSecond = q0 + t * v;
   out.distance = (out.onFirst - out.onSecond).norm();
+  out.s = s;
+  out.t = t;
   return out;
 }
 

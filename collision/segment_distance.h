@@ -8,6 +8,9 @@ namespace polysim::collision {
 struct SegmentClosestPoints {
   Eigen::Vector3d onFirst, onSecond;
   double distance = 0.0;  // m
+  /// The points' parameters: onFirst = p0 + s u, onSecond = q0 + t v; exactly 0 or 1 at
+  /// a segment's end (recomputed from a point, an end's parameter may miss by round-off).
+  double s = 0.0, t = 0.0;
 };
 
 /// The closest points of segments p0 + s u and q0 + t v, s and t in [0, 1]. Parallel
