@@ -27,6 +27,11 @@ struct ContactPoint {
   /// times (1 - this). 1: the normal is a face's of a (a point of b on it); 0: a face's of
   /// b; 0.5: between two edges, or two faces together.
   double normalTurnWithA = 0.5;
+  /// A point where an edge of a crosses an edge of b: the two edges' unit directions
+  /// (world), whose cross product is the normal; zero for any other point. The normal then
+  /// turns with both edges, not with one body, and the points closest on the two edges
+  /// slide along them (contact_row.h, gapCurvature).
+  Eigen::Vector3d edgeA = Eigen::Vector3d::Zero(), edgeB = Eigen::Vector3d::Zero();
   /// In: the impulses to start from (warm start, e.g. last step's for the same point);
   /// out: the accumulated impulses solved (N s). Friction is a world vector in the
   /// contact plane (a given one is projected onto it), not coordinates in the solver's

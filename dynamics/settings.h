@@ -49,6 +49,13 @@ inline constexpr double kEnergyRoundOff = 1e-9;
 /// 0.04 m/s at 240 Hz and 0.16 m/s at 60 Hz).
 inline constexpr double kBounceThreshold = 0.5;
 
+/// Two edges crossing at an angle whose sine is below this are taken for a line contact
+/// when the solver curves their gap (contact_row.h): the point where they cross slides
+/// along them at their relative speed over the sine, and as they turn parallel that
+/// point's motion, and the curvature it gives, grow without bound. Above it the point
+/// slides at most 10 times their relative speed.
+inline constexpr double kCrossingEdgeSine = 0.1;
+
 /// A body moving slower than this (m/s, also for angular speed times its size) is
 /// reported at rest.
 inline constexpr double kRestSpeed = 1e-3;

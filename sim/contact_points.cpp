@@ -61,7 +61,7 @@ std::vector<PlanePoint> hullCorners(std::vector<PlanePoint> points) {
 }  // namespace
 
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
-                         std::vector<dynamics::ContactPoint>& out) {
+                         std::vector<dynamics::ContactPoint>& out, const EdgeDirection& edgeDirection) {
   const double sameDirection = std::cos(kCoplanarContactAngle);
   std::vector<char> taken(contacts.size(), 0);
   for (size_t first = 0; first < contacts.size(); ++first) {
@@ -91,8 +91,13 @@ void appendContactPoints(int a, int b, const std::vector<collision::Contact>& co
     // the detector's order, which the sweeps' order follows: it goes as it is.
     if (group.size() > 1) points = hullCorners(std::move(points));
     const int manifold = static_cast<int>(out.size());  // unique: the index of its first point
-    for (const PlanePoint& p : points)
+    const collision::Contact& only = *group.front();
+    const bool crossingEdges = edgeDirection && group.size() == 1 && only.type == collision::ContactType::Point &&
+                               only.featureA.kind == Kind::Edge && only.featureB.kind == Kind::Edge;
+    for (const PlanePoint& p : points) {
       out.push_back({a, b, p.x, n, p.gap, material.restitution, material.friction, manifold, turnWithA});
+      if (crossingEdges) out.back().edgeA = edgeDirection(true, only.featureA.id), out.back().edgeB = edgeDirection(false, only.featureB.id);
+    }
   }
 }
 

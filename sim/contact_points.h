@@ -2,6 +2,7 @@
 // Contacts as the solver sees them: each pair's contacts turned into the dynamics' plain
 // contact points, one manifold per plane of contact.
 
+#include <functional>
 #include <vector>
 
 #include "collision/contact.h"
@@ -14,6 +15,9 @@ struct PairMaterial {
   double restitution = 0.0;
   double friction = 0.0;
 };
+
+/// The unit direction (world) of edge `edgeId` of the pair's body a (`ofA`) or b.
+using EdgeDirection = std::function<Eigen::Vector3d(bool ofA, int edgeId)>;
 
 /// Contacts of one pair whose normals lie within this angle (rad) of each other are one
 /// manifold for the solver. A box resting on another, or a cup on a cup's rim, touches in
@@ -41,7 +45,10 @@ inline constexpr double kSameContactPoint = 1e-9;
 /// polygon's corners in order): the sweeps follow the points' order, and a pyramid of
 /// 820 boxes at the sweep limit moved 16 mm in 10 s with its corners re-ordered, 4.1 mm
 /// without.
+/// A point where an edge of a crosses an edge of b (a point contact between two edges, on
+/// its own in its plane) also gets the two edges' directions, from `edgeDirection` when
+/// given (dynamics::ContactPoint::edgeA).
 void appendContactPoints(int a, int b, const std::vector<collision::Contact>& contacts, const PairMaterial& material,
-                         std::vector<dynamics::ContactPoint>& out);
+                         std::vector<dynamics::ContactPoint>& out, const EdgeDirection& edgeDirection = {});
 
 }  // namespace polysim::sim

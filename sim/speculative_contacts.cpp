@@ -1,10 +1,39 @@
 #include "sim/speculative_contacts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
+#include "sim/contact_points.h"
+
 namespace polysim::sim {
+namespace {
+
+// Adds to `widened` each of the detector's contacts of the same pair (`detected`) whose
+// normal none of the widened contacts shares (kCoplanarContactAngle): the widened test
+// may see a face where the detector saw two edges crossing at its rim, and the detector's
+// verdict is the one a step must keep. A solve on the face's normal alone let the edges
+// sink past the tolerance: a box landing spinning on another's edge took one event after
+// another, each a few microseconds on, to the event bound. Where they agree, nothing is
+// added, and the solver sees what it saw before.
+void keepContactsMissed(const collision::PairResult& detected, collision::PairResult& widened) {
+  const double sameDirection = std::cos(kCoplanarContactAngle);
+  const double orientation = detected.a == widened.a ? 1.0 : -1.0;  // normals point from b towards a
+  const size_t widenedCount = widened.contacts.size();
+  for (const collision::Contact& c : detected.contacts) {
+    const Eigen::Vector3d normal = orientation * c.normal;
+    const auto shares = [&](size_t k) { return widened.contacts[k].normal.dot(normal) >= sameDirection; };
+    bool covered = false;
+    for (size_t k = 0; k < widenedCount && !covered; ++k) covered = shares(k);
+    if (covered) continue;
+    collision::Contact& kept = widened.contacts.emplace_back(c);
+    kept.normal = normal;
+    if (orientation < 0) std::swap(kept.featureA, kept.featureB);
+  }
+}
+
+}  // namespace
 
 std::vector<collision::PairResult> withSpeculativeContacts(
     const collision::ObjectDatabase& db, collision::IntersectionWorkspace& workspace, double reach,
@@ -45,6 +74,7 @@ std::vector<collision::PairResult> withSpeculativeContacts(
     }
     contacts.push_back(std::move(*at->second));
     widened.erase(at);
+    keepContactsMissed(p, contacts.back());
   }
   for (const auto& [pair, p] : widened) contacts.push_back(std::move(*p));  // the new ones
   return contacts;

@@ -37,8 +37,9 @@ enum class SpeculativeRole {
 /// the contacts found so (those within the tolerance as before, plus the features that
 /// may touch within the step, each with its own gap). `touching` (the pairs in contact
 /// within the tolerance, body indices) are all returned: with the widened contacts where
-/// found and accepted, else as they are. `bodyOf` maps the database's objects to body
-/// indices (empty: the same).
+/// found and accepted (plus each of their own contacts whose normal no widened contact
+/// shares: the detector's verdict is the one a step keeps), else as they are. `bodyOf`
+/// maps the database's objects to body indices (empty: the same).
 std::vector<collision::PairResult> withSpeculativeContacts(
     const collision::ObjectDatabase& db, collision::IntersectionWorkspace& workspace, double reach,
     const std::vector<int>& bodyOf, const std::vector<collision::PairResult>& touching,

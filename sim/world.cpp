@@ -252,8 +252,13 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   for (const collision::PairResult& pair : contacts) {
     const PairMaterial& a = materials_[pair.a];
     const PairMaterial& b = materials_[pair.b];
+    const auto edgeDirection = [this, &pair](bool ofA, int edgeId) -> Eigen::Vector3d {
+      const collision::ObjNode& object = db_.objects[ofA ? pair.a : pair.b];
+      const collision::MeshEdge& e = object.mesh->edges()[edgeId];
+      return (object.X_WO.linear() * (object.mesh->vertices()[e.v1] - object.mesh->vertices()[e.v0])).normalized();
+    };
     appendContactPoints(pair.a, pair.b, pair.contacts,
-                        {std::max(a.restitution, b.restitution), std::sqrt(a.friction * b.friction)}, points);
+                        {std::max(a.restitution, b.restitution), std::sqrt(a.friction * b.friction)}, points, edgeDirection);
   }
   if (points.empty()) return;
   // Bottom-up along gravity: each sweep of the sequential solver then carries a stack's

@@ -12,6 +12,7 @@
 
 #include "collision/intersection.h"
 #include "collision/polygon_mesh.h"
+#include "collision/shapes.h"
 #include "tests/poses.h"
 #include "tests/test_support.h"
 
@@ -193,6 +194,43 @@ TEST(ContactPoints, ACupOnACupsRimIsOneBlockOfTheRimsOuterCorners) {
     EXPECT_NEAR(std::abs(p.point.y()), 0.5, 1e-9);
     EXPECT_NEAR(p.point.z(), 0.6, db.tolerance);
   }
+}
+
+// Two ridges crossing square: a unit box turned 45 degrees about x (its top a ridge along
+// x) under one turned 45 degrees about y (its bottom a ridge along y), 0.5 eps into it.
+// The detector's point contact between the two edges gets both edges' directions, which
+// cross along its normal; the lower box's face contacts with the floor get none.
+TEST(ContactPoints, EdgesCrossingGetTheirDirections) {
+  collision::ObjectDatabase db;
+  const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(Vector3d(1, 1, 1)));
+  const double half = std::sqrt(0.5);  // the ridge's height over the centre
+  const Eigen::Isometry3d lower(Eigen::Translation3d(0, 0, 0) * Eigen::AngleAxisd(M_PI / 4, Vector3d::UnitX()));
+  const Eigen::Isometry3d upper(Eigen::Translation3d(0.1, -0.2, 2 * half - 0.5 * db.tolerance) *
+                                Eigen::AngleAxisd(M_PI / 4, Vector3d::UnitY()));
+  db.add("lower", box, lower, true);
+  db.add("upper", box, upper, false);
+  const collision::IntersectionResult r = collision::test4Intersection(db);
+  ASSERT_EQ(r.pairs.size(), 1u);
+  const collision::PairResult& pair = r.pairs[0];
+  const auto edgeDirection = [&](bool ofA, int edgeId) -> Vector3d {
+    const collision::ObjNode& object = db.objects[ofA ? pair.a : pair.b];
+    const collision::MeshEdge& e = object.mesh->edges()[edgeId];
+    return (object.X_WO.linear() * (object.mesh->vertices()[e.v1] - object.mesh->vertices()[e.v0])).normalized();
+  };
+  std::vector<dynamics::ContactPoint> out;
+  appendContactPoints(pair.a, pair.b, pair.contacts, {0.0, 0.5}, out, edgeDirection);
+  ASSERT_EQ(out.size(), 1u);
+  const dynamics::ContactPoint& c = out[0];
+  EXPECT_NEAR(c.point.x(), 0.1, 1e-9);
+  EXPECT_NEAR(c.point.y(), 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(c.edgeA.dot(Vector3d::UnitX())) + std::abs(c.edgeB.dot(Vector3d::UnitX())), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(c.edgeA.dot(Vector3d::UnitY())) + std::abs(c.edgeB.dot(Vector3d::UnitY())), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(c.edgeA.cross(c.edgeB).dot(c.normal)), 1.0, 1e-12);
+  // An area between faces names no edges.
+  std::vector<dynamics::ContactPoint> faces;
+  appendContactPoints(1, 2, {contactOf(ContactType::Area, Vector3d::UnitZ(), {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {0, 0, 0})},
+                      {0.0, 0.5}, faces, edgeDirection);
+  for (const dynamics::ContactPoint& p : faces) EXPECT_TRUE(p.edgeA.isZero(0.0) && p.edgeB.isZero(0.0));
 }
 
 }  // namespace

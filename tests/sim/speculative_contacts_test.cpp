@@ -82,6 +82,42 @@ TEST(SpeculativeContacts, TouchingPairsAreKeptOrWidenedAndMappedToBodies) {
   EXPECT_TRUE(found[1].contacts.empty()) << "as given";
 }
 
+// A touching pair that the widened test finds keeps, beside the widened contacts, each of
+// the detector's own contacts whose normal none of them shares (given here under the
+// pair's other order, so with the normal reversed): near a face's rim the widened test
+// may see a face where the detector saw two edges crossing, and a solve on the face's
+// normal alone let the edges sink past the tolerance (a box landing spinning on another:
+// one event after another, each a few microseconds on, to the event bound).
+TEST(SpeculativeContacts, TouchingPairsKeepTheDetectorsContactsTheWidenedOnesMiss) {
+  collision::ObjectDatabase db = threeBoxes();
+  collision::IntersectionWorkspace ws;
+  const std::vector<int> bodyOf = {10, 11, 12};
+  collision::Contact alongX, crossing;
+  alongX.normal = V3::UnitX();  // from body 10 towards 11: the widened contacts' normal, reversed
+  alongX.addPoint(V3(0.5, 0, 0), 0.0);
+  crossing.normal = V3(0.6, 0.0, 0.8);
+  crossing.addPoint(V3(0.5, 0.5, 0.5), -5e-5);
+  PairResult touching;
+  touching.a = 11, touching.b = 10, touching.status = Status::Contact, touching.contacts = {alongX, crossing};
+  const std::vector<PairResult> found = withSpeculativeContacts(db, ws, kSpeculativeReach, bodyOf, {touching}, allMoving, everyPair);
+  ASSERT_EQ(found.size(), 1u);
+  ASSERT_EQ(found[0].a, 10);
+  int widened = 0, kept = 0;
+  for (const collision::Contact& c : found[0].contacts) {
+    if ((c.normal + V3::UnitX()).norm() < 1e-12) {
+      ++widened;
+      for (size_t i = 0; i < c.points.size(); ++i) EXPECT_NEAR(c.gapAt(i), 0.01, 1e-9) << "the widened one, not the given one";
+    }
+    if ((c.normal + crossing.normal).norm() < 1e-12) {
+      ++kept;
+      EXPECT_EQ(c.separation, -5e-5);
+    }
+  }
+  EXPECT_GE(widened, 1);
+  EXPECT_EQ(kept, 1);
+  EXPECT_EQ(static_cast<int>(found[0].contacts.size()), widened + kept);
+}
+
 // Events and outcome of a unit box released at rest on one corner or edge on the floor,
 // tilted by `tilt` (rad) about the horizontal axis at `heading` (rad), over 3 s at 60 Hz.
 struct Tipping {
