@@ -3,7 +3,9 @@
 // collisionDetect(), backs up to the contact time, resolves the contacts and goes on.
 
 #include <memory>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "collision/time_of_contact.h"
@@ -55,6 +57,9 @@ inline constexpr double kWideBandFactor = 2.0;
 /// this distance (m) of it; it then starts from that point's force (warm start). Resting
 /// contacts reappear at the same place to round-off; 1 mm is far from both.
 inline constexpr double kWarmStartRadius = 1e-3;
+
+/// Pairs of body indices, the smaller first.
+using BodyPairs = std::set<std::pair<int, int>>;
 
 /// One contact event inside a step.
 struct StepEvent {
@@ -156,8 +161,16 @@ class World {
   /// `allowedOverlap` (m) are pushed apart (contact_solver.h). `stepStart`: the solve at
   /// the step's start, which holds the step's whole gravity; it warm-starts from the last
   /// such solve and is kept for the next. A solve after an event starts from zero.
+  /// `bouncing`, when given: the only pairs that may bounce (restitution), judged before
+  /// the bodies in contact were given gravity. Any other pair's approach is that gravity's
+  /// (the semi-implicit step of a supported body), not an impact: a box that had just
+  /// bounced, still within the band at a step's start, was given a whole step's gravity
+  /// and bounced off it (at dt 2 s it gained 200 J). Without it, every pair approaching
+  /// faster than kBounceThreshold bounces (an event's impact).
   void resolveContacts(const std::vector<collision::PairResult>& contacts, double horizon, bool stepStart,
-                       double allowedOverlap);
+                       double allowedOverlap, const BodyPairs* bouncing = nullptr);
+  /// The pairs of `contacts` that bounce (bounces()), as body pairs.
+  BodyPairs bouncingPairs(const std::vector<collision::PairResult>& contacts) const;
   /// Sets each point's impulses (N s over `horizon`) from the last step-start solve's
   /// forces at the same pair's nearest point within kWarmStartRadius.
   void warmStartFromLastStep(std::vector<dynamics::ContactPoint>& points, double horizon) const;
