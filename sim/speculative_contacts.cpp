@@ -23,10 +23,8 @@ void keepContactsMissed(const collision::PairResult& detected, collision::PairRe
   const size_t widenedCount = widened.contacts.size();
   for (const collision::Contact& c : detected.contacts) {
     const Eigen::Vector3d normal = orientation * c.normal;
-    const auto shares = [&](size_t k) { return widened.contacts[k].normal.dot(normal) >= sameDirection; };
-    bool covered = false;
-    for (size_t k = 0; k < widenedCount && !covered; ++k) covered = shares(k);
-    if (covered) continue;
+    const auto first = widened.contacts.begin(), last = first + static_cast<std::ptrdiff_t>(widenedCount);
+    if (std::any_of(first, last, [&](const collision::Contact& w) { return w.normal.dot(normal) >= sameDirection; })) continue;
     collision::Contact& kept = widened.contacts.emplace_back(c);
     kept.normal = normal;
     if (orientation < 0) std::swap(kept.featureA, kept.featureB);

@@ -192,7 +192,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     const BodyPairs bouncing = bouncingPairs(contacts);
     std::vector<collision::PairResult> landed;
     for (const collision::PairResult& p : contacts)
-      if (!bouncing.count({std::min(p.a, p.b), std::max(p.a, p.b)})) landed.push_back(p);
+      if (!bouncing.count(bodyPair(p.a, p.b))) landed.push_back(p);
     resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
     if (supportTouchingBodies(landed, remaining)) {             // bodies that landed take the rest of the step's gravity,
       if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),
@@ -257,7 +257,7 @@ bool World::supportTouchingBodies(const std::vector<collision::PairResult>& cont
 BodyPairs World::bouncingPairs(const std::vector<collision::PairResult>& contacts) const {
   BodyPairs pairs;
   for (const collision::PairResult& p : contacts)
-    if (bounces(p)) pairs.emplace(std::min(p.a, p.b), std::max(p.a, p.b));
+    if (bounces(p)) pairs.insert(bodyPair(p.a, p.b));
   return pairs;
 }
 
@@ -267,7 +267,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   for (const collision::PairResult& pair : contacts) {
     const PairMaterial& a = materials_[pair.a];
     const PairMaterial& b = materials_[pair.b];
-    const bool mayBounce = !bouncing || bouncing->count({std::min(pair.a, pair.b), std::max(pair.a, pair.b)});
+    const bool mayBounce = !bouncing || bouncing->count(bodyPair(pair.a, pair.b));
     const auto edgeDirection = [this, &pair](bool ofA, int edgeId) -> Eigen::Vector3d {
       const collision::ObjNode& object = db_.objects[ofA ? pair.a : pair.b];
       const collision::MeshEdge& e = object.mesh->edges()[edgeId];

@@ -2,6 +2,7 @@
 // The step loop: the user's design, a minimal integrator whose every step calls
 // collisionDetect(), backs up to the contact time, resolves the contacts and goes on.
 
+#include <algorithm>
 #include <memory>
 #include <set>
 #include <string>
@@ -60,6 +61,7 @@ inline constexpr double kWarmStartRadius = 1e-3;
 
 /// Pairs of body indices, the smaller first.
 using BodyPairs = std::set<std::pair<int, int>>;
+inline std::pair<int, int> bodyPair(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 
 /// One contact event inside a step.
 struct StepEvent {
