@@ -57,7 +57,7 @@ const StepReport& World::step(double dt) {
   for (const collision::PairResult& p : contacts_)
     if (awake(p.a) || awake(p.b)) moving.push_back(p);
   const BodyPairs bouncingAtStart = bouncingPairs(moving);  // judged before the step's gravity
-  supportTouchingBodies(moving, dt);  // gravity into the velocities of bodies in contact; the others fly free
+  supportTouchingBodies(moving, bouncingAtStart, dt);  // gravity into the velocities of bodies in contact; the others fly free
   resolveContacts(solverContacts(db_, {}, moving), dt, true,  // the contacts the step starts with
                   dynamics::kAllowedOverlapFraction * db_.tolerance, &bouncingAtStart);
   std::vector<collision::PairResult> contactsAfter;
@@ -190,11 +190,8 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     // judged after it, a bounced box was taken for landed and given the rest of the step's
     // gravity at once (at dt 1 s, 9 m/s down, which it then bounced off: +12 J a step).
     const BodyPairs bouncing = bouncingPairs(contacts);
-    std::vector<collision::PairResult> landed;
-    for (const collision::PairResult& p : contacts)
-      if (!bouncing.count(bodyPair(p.a, p.b))) landed.push_back(p);
-    resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
-    if (supportTouchingBodies(landed, remaining)) {             // bodies that landed take the rest of the step's gravity,
+    resolveContacts(solved, remaining, false, allowedOverlap);    // impulses at the contact
+    if (supportTouchingBodies(contacts, bouncing, remaining)) {   // bodies that landed take the rest of the step's gravity,
       if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),
       resolveContacts(solved, remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
     }
@@ -241,10 +238,11 @@ void World::takeBackUnflownGravity(const std::vector<int>& island, double unflow
   }
 }
 
-bool World::supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration) {
+bool World::supportTouchingBodies(const std::vector<collision::PairResult>& contacts, const BodyPairs& bouncing,
+                                  double duration) {
   bool any = false;
   for (const collision::PairResult& p : contacts)
-    if (!bounces(p))
+    if (!bouncing.count(bodyPair(p.a, p.b)))
       for (int i : {p.a, p.b})
         if (free_[i]) {
           dynamics::integrateVelocity(bodies_[i], scene_.gravity, duration);  // nothing for a static body

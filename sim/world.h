@@ -127,10 +127,11 @@ class World {
   /// Bodies touching something at this point of the step (in `contacts`) that were
   /// flying free get gravity for the next `duration` seconds into their velocity now and
   /// move in a straight line from here (semi-implicit Euler); the others keep flying their
-  /// exact parabola (dynamics/integrator.h). A pair about to bounce supports neither
-  /// body: it would bounce with a step's gravity more speed, and then fly free anyway.
-  /// True when any body changed so.
-  bool supportTouchingBodies(const std::vector<collision::PairResult>& contacts, double duration);
+  /// exact parabola (dynamics/integrator.h). A pair about to bounce (in `bouncing`,
+  /// judged before the solve that bounces it) supports neither body: it would bounce with
+  /// a step's gravity more speed, and then fly free anyway. True when any body changed so.
+  bool supportTouchingBodies(const std::vector<collision::PairResult>& contacts, const BodyPairs& bouncing,
+                             double duration);
   /// The island's supported bodies (given gravity for the whole step, or the rest of it
   /// from their landing) lose the part for the `unflown` seconds (s) the island's clock
   /// stopped short of, as far as they still move down with it: an island stopped at the
