@@ -168,5 +168,32 @@ TEST(SolverStages, ShockPropagationKeepsNoResultThatAddsEnergy) {
   EXPECT_LE(kineticEnergy(bodies), 0.75 * (1 + 1e-9));
 }
 
+// Pushes (split impulses) part an overlap deeper than the allowed one by what is beyond it,
+// over the step, and the pushed box's support holds: the box under an overlapping one is
+// not pushed into the floor, and a box elsewhere is not pushed at all.
+TEST(SolverStages, PushesPartADeepOverlapAndTheFloorHoldsWhatIsUnderIt) {
+  std::vector<RigidBody> bodies = stackOfBoxes(2);
+  std::vector<ContactPoint> contacts = stackContacts(2, V3::UnitZ(), 0.5);
+  const collision::MeshData box = collision::makeBox(V3(1, 1, 1));
+  RigidBody& aside = bodies.emplace_back(RigidBody::dynamic(withMass(computeMassProperties(box.vertices, box.faces, 1.0), 1.0)));
+  aside.position = V3(5, 0, 0.5);
+  for (double x : {-0.5, 0.5})
+    for (double y : {-0.5, 0.5}) contacts.push_back({3, 0, V3(5 + x, y, 0.0), V3::UnitZ(), -1e-5, 0.0, 0.5, 3});
+  const double overlap = 3e-3, allowed = 2.5e-5;
+  for (ContactPoint& c : contacts)
+    if (c.a == 2) c.separation = -overlap;
+  solveContacts(bodies, contacts, kDt, allowed);
+  const auto pushAt = [&bodies](int i, const V3& p) -> V3 {
+    const RigidBody& b = bodies[i];
+    return b.pushVelocity + b.pushAngularVelocity.cross(p - b.centerOfMass());
+  };
+  for (const ContactPoint& c : contacts) {
+    const double apart = (pushAt(c.a, c.point) - (c.b == 0 ? V3::Zero() : pushAt(c.b, c.point))).dot(c.normal);
+    if (c.a == 2) EXPECT_NEAR(apart, (overlap - allowed) / kDt, 1e-8);  // parted by what is beyond the allowed depth
+    else EXPECT_NEAR(apart, 0.0, 1e-8) << "body " << c.a;               // held by the floor; the box aside untouched
+  }
+  EXPECT_EQ(bodies[3].pushVelocity, V3::Zero());
+}
+
 }  // namespace
 }  // namespace polysim::dynamics
