@@ -3,7 +3,6 @@
 // main solve (contact_solver.cpp) and shock propagation (shock_propagation.h). Internal
 // to the solver.
 
-#include <utility>
 #include <vector>
 
 #include "dynamics/contact_row.h"
@@ -22,23 +21,6 @@ double kineticEnergy(const std::vector<RigidBody*>& bodies);
 /// arms: a body marked static (or with zero inverse mass and frame) takes no impulse.
 void prepareAxes(Row& r);
 
-/// A moving body and its longest arm (m): the farthest any of its contact points in a
-/// group of rows lies from its centre of mass.
-using BodyReach = std::pair<RigidBody*, double>;
-
-/// How far the contact points' velocities moved at most since `start()` (m/s), for a
-/// group's bodies: each one's change of velocity plus its change of spin times its arm.
-class PointVelocityChange {
- public:
-  explicit PointVelocityChange(const std::vector<BodyReach>& bodies);
-  void start();
-  double largest() const;
-
- private:
-  const std::vector<BodyReach>& bodies_;
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> before_;
-};
-
 /// The rows of one solve, laid out for sweeping: the blocks (an area's corners or a
 /// line's ends, solved together by small_lcp.h; any other point alone), each block's
 /// coupling matrix, and the groups of blocks that share no moving body. Built once per
@@ -48,10 +30,9 @@ class ContactSweeps {
   /// `bodyCount`: the size of the body array the rows' sources index.
   ContactSweeps(const std::vector<Row>& rows, int bodyCount);
 
-  /// Sweeps each group until a sweep changes no impulse by kSolverVelocityTolerance (m/s
-  /// over the lighter body's mass), or no contact point's velocity by it (the group's
-  /// bodies' velocity changes, each turn taken at its longest arm), or `maxSweeps` are
-  /// made: each block's friction rows, then its normal impulses. Sweeps run in the rows' order (bottom-up: the first carries a
+  /// Sweeps each group until no impulse changes by kSolverVelocityTolerance (m/s over the
+  /// lighter body's mass) or `maxSweeps` are made: each block's friction rows, then its
+  /// normal impulses. Sweeps run in the rows' order (bottom-up: the first carries a
   /// stack's weight down in one pass), then backwards, and so on (symmetric
   /// Gauss-Seidel). `iterations` is the most sweeps any group took; `converged`, whether
   /// every group stopped on the tolerance.
@@ -62,7 +43,6 @@ class ContactSweeps {
   std::vector<SmallLcp> couplings_;             // one per block of several rows
   std::vector<const SmallLcp*> couplingOf_;     // per block: its matrix, or null for one row
   std::vector<std::vector<int>> groups_;        // block indices, in the rows' order
-  std::vector<std::vector<BodyReach>> groupBodies_;  // per group: each moving body, its longest arm (m)
 };
 
 }  // namespace polysim::dynamics::solver
