@@ -8,7 +8,6 @@
 
 #include "dynamics/contact_row.h"
 #include "dynamics/contact_sweeps.h"
-#include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
 #include "dynamics/shock_propagation.h"
 
@@ -62,27 +61,23 @@ void applyRestitution(std::vector<Row>& rows, double energyBefore) {
   setScale(std::clamp(alpha, 0.0, 1.0));
 }
 
-// The rows a push can reach: those linked through moving bodies to a row with a target
-// above zero. Every other row's push impulse stays zero (no push velocity, no target), so
-// the push sweeps skip them: the same result, without sweeping a whole pile for the one
-// corner of it that overlaps too deep.
-std::vector<int> rowsReachedByPushes(const std::vector<Row>& rows, const std::vector<double>& target, int bodyCount) {
-  DisjointSets sets(bodyCount);
-  const auto movingOf = [](const Row& r) { return r.a->isStatic ? r.source->b : r.source->a; };
-  for (const Row& r : rows)
-    if (!r.a->isStatic && !r.b->isStatic) sets.join(r.source->a, r.source->b);
-  std::vector<char> pushed(static_cast<size_t>(bodyCount), 0);
-  for (size_t k = 0; k < rows.size(); ++k)
-    if (target[k] > 0) pushed[sets.root(movingOf(rows[k]))] = 1;
+// The rows a push can reach: those of the sweeps' groups (linked through moving bodies)
+// that hold a row with a target above zero, in increasing order. Every other row's push
+// impulse stays zero (no push velocity, no target), so the push sweeps skip them: the
+// same result, without sweeping a whole pile for the one corner of it that overlaps too
+// deep.
+std::vector<int> rowsReachedByPushes(const ContactSweeps& sweeps, const std::vector<double>& target) {
   std::vector<int> reached;
-  for (size_t k = 0; k < rows.size(); ++k)
-    if (pushed[sets.root(movingOf(rows[k]))]) reached.push_back(static_cast<int>(k));
+  for (const std::vector<int>& group : sweeps.groupRows())
+    if (std::any_of(group.begin(), group.end(), [&target](int k) { return target[k] > 0; }))
+      reached.insert(reached.end(), group.begin(), group.end());
+  std::sort(reached.begin(), reached.end());
   return reached;
 }
 
 // Split impulses (Catto's pseudo velocities, as in Box2D v2 and Bullet): sequential
 // impulses on the push velocities alone, targets from the overlap beyond the allowed one.
-void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt, int bodyCount) {
+void solvePushes(std::vector<Row>& rows, const ContactSweeps& sweeps, double allowedOverlap, double dt) {
   for (RigidBody* b : movingBodies(rows)) b->pushVelocity.setZero(), b->pushAngularVelocity.setZero();
   std::vector<double> target(rows.size()), impulse(rows.size(), 0.0);
   bool any = false;
@@ -91,7 +86,7 @@ void solvePushes(std::vector<Row>& rows, double allowedOverlap, double dt, int b
     any = any || target[k] > 0;
   }
   if (!any) return;
-  const std::vector<int> reached = rowsReachedByPushes(rows, target, bodyCount);
+  const std::vector<int> reached = rowsReachedByPushes(sweeps, target);
   for (int sweep = 0; sweep < kMaxSolverIterations; ++sweep) {
     double largestChange = 0.0;
     for (int k : reached) {
@@ -240,7 +235,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     }
   }
   applyRestitution(rows, energyBefore);
-  solvePushes(rows, allowedOverlap, dt, bodyCount);
+  solvePushes(rows, sweeps, allowedOverlap, dt);
   for (Row& r : rows) {  // store, for the next step's warm start
     r.source->normalImpulse = r.normalImpulse;
     r.source->frictionImpulse = r.tangent1 * r.frictionImpulse.x() + r.tangent2 * r.frictionImpulse.y();

@@ -190,4 +190,14 @@ SolveStats ContactSweeps::run(std::vector<Row>& rows, int maxSweeps) const {
   return stats;
 }
 
+std::vector<std::vector<int>> ContactSweeps::groupRows() const {
+  std::vector<std::vector<int>> rows;
+  for (const std::vector<int>& group : groups_) {
+    std::vector<int>& mine = rows.emplace_back();
+    for (int k : group) mine.insert(mine.end(), blocks_[k].begin(), blocks_[k].end());
+    std::sort(mine.begin(), mine.end());
+  }
+  return rows;
+}
+
 }  // namespace polysim::dynamics::solver

@@ -38,6 +38,10 @@ class ContactSweeps {
   /// every group stopped on the tolerance.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 
+  /// The rows of each group of blocks that share no moving body (the groups the sweeps
+  /// converge one by one), each group's rows in increasing order.
+  std::vector<std::vector<int>> groupRows() const;
+
  private:
   std::vector<std::vector<int>> blocks_;
   std::vector<SmallLcp> couplings_;             // one per block of several rows
