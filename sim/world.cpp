@@ -10,6 +10,7 @@
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
 #include "dynamics/settings.h"
+#include "sim/warm_start.h"
 #include "dynamics/sleep.h"
 #include "sim/islands.h"
 
@@ -288,7 +289,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   // forces over the remaining time, such a solve pushed every resting contact of its
   // island apart and then took it back: a fifth of a settling pile's cost (tilted piles
   // of 343, seeds 1 to 3, first 8 s: 11.2 against 9.1 s of CPU).
-  if (stepStart) warmStartFromLastStep(points, horizon);
+  if (stepStart) warmStartFromLastSolve(lastSolved_, points, horizon, static_cast<int>(bodies_.size()));
   const dynamics::SolveStats solved = dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps);
   report_.solverIterations += solved.iterations;
   report_.shockSweeps += solved.shockSweeps;
@@ -300,24 +301,6 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   for (const dynamics::ContactPoint& old : lastSolved_)  // sleeping pairs keep theirs for when they wake
     if (!awake(old.a) && !awake(old.b)) points.push_back(old);
   lastSolved_ = std::move(points);
-}
-
-void World::warmStartFromLastStep(std::vector<dynamics::ContactPoint>& points, double horizon) const {
-  // From the last step-start solve's first point of the same pair close enough to it (the
-  // old points looked up by pair: a pile has thousands).
-  std::unordered_map<long long, std::vector<const dynamics::ContactPoint*>> oldOfPair;
-  const auto pairKey = [n = static_cast<long long>(bodies_.size())](int a, int b) { return a * n + b; };
-  for (const dynamics::ContactPoint& old : lastSolved_) oldOfPair[pairKey(old.a, old.b)].push_back(&old);
-  for (dynamics::ContactPoint& p : points) {
-    const auto found = oldOfPair.find(pairKey(p.a, p.b));
-    if (found == oldOfPair.end()) continue;
-    for (const dynamics::ContactPoint* old : found->second)
-      if ((old->point - p.point).norm() <= kWarmStartRadius && old->normal.dot(p.normal) > 0) {
-        p.normalImpulse = old->normalImpulse * horizon;
-        p.frictionImpulse = old->frictionImpulse * horizon;
-        break;
-      }
-  }
 }
 
 void World::predictMotion(const std::vector<int>& island, double duration) {

@@ -54,11 +54,6 @@ inline constexpr double kStalledGapFraction = 0.5;
 /// test, which their contacts' gaps follow, and speculate further anyway.
 inline constexpr double kWideBandFactor = 2.0;
 
-/// A contact point is taken for last solve's point of the same pair when it lies within
-/// this distance (m) of it; it then starts from that point's force (warm start). Resting
-/// contacts reappear at the same place to round-off; 1 mm is far from both.
-inline constexpr double kWarmStartRadius = 1e-3;
-
 /// Pairs of body indices, the smaller first.
 using BodyPairs = std::set<std::pair<int, int>>;
 inline std::pair<int, int> bodyPair(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
@@ -174,9 +169,6 @@ class World {
                        double allowedOverlap, const BodyPairs* bouncing = nullptr);
   /// The pairs of `contacts` that bounce (bounces()), as body pairs.
   BodyPairs bouncingPairs(const std::vector<collision::PairResult>& contacts) const;
-  /// Sets each point's impulses (N s over `horizon`) from the last step-start solve's
-  /// forces at the same pair's nearest point within kWarmStartRadius.
-  void warmStartFromLastStep(std::vector<dynamics::ContactPoint>& points, double horizon) const;
   /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
   /// that overlap over `duration`.
   std::vector<std::vector<int>> islandsOfStep(double duration) const;

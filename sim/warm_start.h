@@ -1,0 +1,26 @@
+#pragma once
+// Warm starting a step's contact solve from the last step's: each new contact point
+// starts from the force an old point of the same pair had at (nearly) the same place.
+
+#include <vector>
+
+#include "dynamics/contact_solver.h"
+
+namespace polysim::sim {
+
+/// A contact point is taken for last solve's point of the same pair when it lies within
+/// this distance (m) of it; it then starts from that point's force (warm start). Resting
+/// contacts reappear at the same place to round-off; 1 mm is far from both.
+inline constexpr double kWarmStartRadius = 1e-3;
+
+/// Sets each of `points`' impulses (N s over `horizon` s) from the force (N) of the first
+/// point of `lastSolved` of the same pair of bodies within kWarmStartRadius whose normal
+/// faces the same way; points with none keep theirs. A pair is the same whichever of its
+/// bodies is `a`: the order a pair comes in may change between steps (a body still at
+/// one step's start and moving at the next is tested the other way round), and with it
+/// the normal's sign and the friction's (the impulse on `a`); the normal impulse is the
+/// same. `bodyCount`: the size of the body array the points index.
+void warmStartFromLastSolve(const std::vector<dynamics::ContactPoint>& lastSolved, std::vector<dynamics::ContactPoint>& points,
+                            double horizon, int bodyCount);
+
+}  // namespace polysim::sim
