@@ -10,7 +10,9 @@ namespace polysim::sim {
 
 /// A contact point is taken for last solve's point of the same pair when it lies within
 /// this distance (m) of it; it then starts from that point's force (warm start). Resting
-/// contacts reappear at the same place to round-off; 1 mm is far from both.
+/// contacts reappear at the same place to round-off; 1 mm is far from both. At 1 cm, a
+/// point sliding or swaying up to 60 cm/s keeps its force too, but the tilted piles of
+/// 1000 rested worse (seeds 1 to 7 and 11, 20 s: 7,599 against 7,931 boxes at rest).
 inline constexpr double kWarmStartRadius = 1e-3;
 
 /// Sets each of `points`' impulses (N s over `horizon` s) from the force (N) of the first
