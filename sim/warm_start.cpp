@@ -6,13 +6,13 @@
 namespace polysim::sim {
 
 void warmStartFromLastSolve(const std::vector<dynamics::ContactPoint>& lastSolved, std::vector<dynamics::ContactPoint>& points,
-                            double horizon, int bodyCount) {
+                            double horizon) {
   // The old points looked up by unordered pair: a pile has thousands. Matched by ordered
   // pairs, a sixth of the points of a pile's resting towers started from nothing each
   // step (their bodies hovered about the speed that marks them still), their solves
   // began up to 6 m/s from the answer, and the towers crept sideways at 1 cm/s for good.
-  const auto pairKey = [n = static_cast<long long>(bodyCount)](int a, int b) {
-    return std::min(a, b) * n + std::max(a, b);
+  const auto pairKey = [](int a, int b) {
+    return static_cast<long long>(std::min(a, b)) << 32 | static_cast<unsigned>(std::max(a, b));
   };
   std::unordered_map<long long, std::vector<const dynamics::ContactPoint*>> oldOfPair;
   for (const dynamics::ContactPoint& old : lastSolved) oldOfPair[pairKey(old.a, old.b)].push_back(&old);

@@ -21,8 +21,8 @@ inline constexpr double kWarmStartRadius = 1e-3;
 /// bodies is `a`: the order a pair comes in may change between steps (a body still at
 /// one step's start and moving at the next is tested the other way round), and with it
 /// the normal's sign and the friction's (the impulse on `a`); the normal impulse is the
-/// same. `bodyCount`: the size of the body array the points index.
+/// same.
 void warmStartFromLastSolve(const std::vector<dynamics::ContactPoint>& lastSolved, std::vector<dynamics::ContactPoint>& points,
-                            double horizon, int bodyCount);
+                            double horizon);
 
 }  // namespace polysim::sim

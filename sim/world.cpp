@@ -9,9 +9,9 @@
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
 #include "dynamics/settings.h"
-#include "sim/warm_start.h"
 #include "dynamics/sleep.h"
 #include "sim/islands.h"
+#include "sim/warm_start.h"
 
 namespace polysim::sim {
 
@@ -288,7 +288,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   // forces over the remaining time, such a solve pushed every resting contact of its
   // island apart and then took it back: a fifth of a settling pile's cost (tilted piles
   // of 343, seeds 1 to 3, first 8 s: 11.2 against 9.1 s of CPU).
-  if (stepStart) warmStartFromLastSolve(lastSolved_, points, horizon, static_cast<int>(bodies_.size()));
+  if (stepStart) warmStartFromLastSolve(lastSolved_, points, horizon);
   const dynamics::SolveStats solved = dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps);
   report_.solverIterations += solved.iterations;
   report_.shockSweeps += solved.shockSweeps;

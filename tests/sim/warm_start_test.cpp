@@ -37,7 +37,7 @@ constexpr double kHorizon = 0.01;  // s
 
 TEST(WarmStart, APointOfTheSamePairAtTheSamePlaceStartsFromItsForce) {
   std::vector<ContactPoint> points{pointOf(2, 1, V3(0.5, 0.5, 1.0) + V3(0, 0, 0.5e-3), V3(0, 0, 1))};
-  warmStartFromLastSolve(lastStep(), points, kHorizon, 3);
+  warmStartFromLastSolve(lastStep(), points, kHorizon);
   EXPECT_DOUBLE_EQ(points[0].normalImpulse, 5.0 * kHorizon);
   EXPECT_TRUE(points[0].frictionImpulse.isApprox(V3(1.0, 0, 0) * kHorizon));
 }
@@ -46,7 +46,7 @@ TEST(WarmStart, APointOfTheSamePairAtTheSamePlaceStartsFromItsForce) {
 // and the friction on its `a` (box 1) is the opposite of box 2's.
 TEST(WarmStart, APairTheOtherWayRoundStartsFromTheSameForceOnEachBody) {
   std::vector<ContactPoint> points{pointOf(1, 2, V3(0.5, 0.5, 1.0), V3(0, 0, -1))};
-  warmStartFromLastSolve(lastStep(), points, kHorizon, 3);
+  warmStartFromLastSolve(lastStep(), points, kHorizon);
   EXPECT_DOUBLE_EQ(points[0].normalImpulse, 5.0 * kHorizon);
   EXPECT_TRUE(points[0].frictionImpulse.isApprox(V3(-1.0, 0, 0) * kHorizon));
 }
@@ -58,7 +58,7 @@ TEST(WarmStart, AnotherPlaceAnotherPairOrAnOppositeNormalStartsFromNothing) {
       pointOf(2, 1, V3(0.5, 0.5, 1.0), V3(0, 0, -1)),                                   // facing the other way
       pointOf(1, 2, V3(0.5, 0.5, 1.0), V3(0, 0, 1)),                                    // so, the other way round
   };
-  warmStartFromLastSolve(lastStep(), points, kHorizon, 3);
+  warmStartFromLastSolve(lastStep(), points, kHorizon);
   for (const ContactPoint& p : points) {
     EXPECT_EQ(p.normalImpulse, 0.0);
     EXPECT_TRUE(p.frictionImpulse.isZero(0.0));
@@ -89,7 +89,7 @@ TEST(WarmStart, ContactsOfABodyStillAtOneStepAndMovingAtTheNextKeepTheirForces) 
   std::vector<ContactPoint> next = pointsWith(stillSecond);
   ASSERT_EQ(next.size(), 4u);
   ASSERT_NE(next[0].a, last[0].a);  // the pair came the other way round
-  warmStartFromLastSolve(last, next, kHorizon, 2);
+  warmStartFromLastSolve(last, next, kHorizon);
   for (const ContactPoint& p : next) {
     EXPECT_DOUBLE_EQ(p.normalImpulse, 2.0 * kHorizon);
     EXPECT_TRUE(p.frictionImpulse.isApprox((p.a == 1 ? V3(0.3, 0, 0) : V3(-0.3, 0, 0)) * kHorizon));  // on the upper box: +x
