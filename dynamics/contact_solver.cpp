@@ -178,7 +178,7 @@ std::vector<std::pair<double, Eigen::Vector2d>> impulsesOf(const std::vector<Row
 }  // namespace
 
 SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
-                         double allowedOverlap, int maxSweeps) {
+                         double allowedOverlap, int maxSweeps, const Eigen::Vector3d& up) {
   const int bodyCount = static_cast<int>(bodies.size());
   std::vector<BodyFrame> frames;
   std::vector<Row> rows = prepareRows(bodies, contacts, dt, frames);
@@ -215,7 +215,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     const SavedVelocities swept(moving);
     const double energySwept = kineticEnergy(moving);
     const std::vector<std::pair<double, Eigen::Vector2d>> impulses = impulsesOf(rows);
-    const SolveStats shock = propagateShock(rows, bodyCount, maxSweeps);
+    const SolveStats shock = propagateShock(rows, bodyCount, std::min(maxSweeps, kMaxSolverIterations), up);
     stats.shockSweeps = shock.iterations;
     stats.shockRowSolves = shock.rowSolves;
     // A pass that gains energy (a level pushed by a body below it moving up) is not

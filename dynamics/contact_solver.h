@@ -65,21 +65,24 @@ struct SolveStats {
 /// its weight from the first sweep; they are clamped to the same limits first.
 /// Sweeps go through the contacts in their given order and back again in turn (the
 /// step loop gives them bottom-up). Contacts that share no moving body (two piles on one
-/// floor) are swept apart, each group until it converges (or reaches `maxSweeps`,
-/// kMaxSolverIterations unless the scene says otherwise) on its own.
+/// floor) are swept apart, each group until it converges or reaches its limit on its own:
+/// `maxSweeps` (the scene's `solver_sweeps`) bounds every group, and one still moving
+/// faster than kSettlingSpeed stops at kMaxSolverIterations (settings.h).
 /// The compression solve is kept from adding kinetic energy: where the sweeps end with
 /// more than the bodies had (a warm start larger than the step needs, not taken back
 /// within `maxSweeps`), the solve starts again from zero impulses with no target above
 /// zero, which frictionless cannot gain (with friction, whose two axes are solved as if
 /// uncoupled, a solve stopped within a few sweeps may still gain a little).
 /// Where the sweeps stop at `maxSweeps`, shock propagation (shock_propagation.h) solves
-/// again from the ground up, each level against the ones below held fixed; its result is
-/// kept only if it raised no kinetic energy.
+/// again from the ground up (`up`: the unit vector against gravity, zero for none), each
+/// level against the ones below held fixed; its result is kept only if it raised no
+/// kinetic energy.
 /// Then the push velocities of the bodies touched are set afresh (split impulses,
 /// rigid_body.h): every contact overlapping deeper than `allowedOverlap` (m) separates at
 /// (depth - allowedOverlap) / dt or more, no contact's push approaches, and push impulses
 /// are >= 0 and frictionless.
 SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
-                         double allowedOverlap = 0.0, int maxSweeps = kMaxSolverIterations);
+                         double allowedOverlap = 0.0, int maxSweeps = kSettlingSolverSweeps,
+                         const Eigen::Vector3d& up = Eigen::Vector3d::Zero());
 
 }  // namespace polysim::dynamics

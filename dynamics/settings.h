@@ -3,8 +3,9 @@
 
 namespace polysim::dynamics {
 
-/// Most sweeps of the contact solver over its contacts in one solve, and of each level
-/// of its shock propagation. Stacks converge slowest; with block solving a resting
+/// Most sweeps of the contact solver over a moving group of contacts in one solve (see
+/// kSettlingSolverSweeps for one nearly at rest), and of each level of its shock
+/// propagation. Stacks converge slowest; with block solving a resting
 /// 20-box stack takes a few sweeps a step once warm-started. What the sweeps leave, shock
 /// propagation settles level by level (shock_propagation.h), and its impulses warm-start
 /// the next step; a resting pyramid's sweeps end at this limit every step, so sweeps
@@ -15,6 +16,22 @@ namespace polysim::dynamics {
 /// (seeds 1 to 8, 8 s). At 40 a frictionless cup column broke the energy bound and the
 /// resting 20-box stack needed shock propagation; at 30 the pyramid of 820 leaned 1.9 cm.
 inline constexpr int kMaxSolverIterations = 60;
+
+/// A solve's sweep limit unless the scene sets `solver_sweeps` (which bounds every solve).
+/// Only a settling group uses more than kMaxSolverIterations of it: one still unconverged
+/// there while no contact's bodies move apart faster than kSettlingSpeed (m/s, at the
+/// point). Columns of ten boxes side by side, bridged by a top box, stopped at 60 sweeps a
+/// step with boxes at 1 to 3 cm/s and never came to rest (pile of 1000, seed 2: 40 boxes
+/// moving at 20 s); swept on, they rest within a second and sleep. A fast group (a landing
+/// pile) stops at kMaxSolverIterations: its answer is overturned by the next impact
+/// anyway, and its solves are most of the cost. Piles of 1000, seeds 1 to 12, 20 s: at 60
+/// 11,937 of 12,000 boxes at rest, 592 s of CPU; at 150 all, the last pile at 18.3 s, 559 s;
+/// at 250 all by 6.0 s, 550 s; at 600 all by 11.0 s, 701 s. Piles of 343 (seeds 1 to 3,
+/// 12 s), which rest anyway, cost 3 to 26% more at 250 than with every limit at 60, 20 to
+/// 80% more at 600. 600 stays until a lower limit passes the suite: at 250 one solve of
+/// the resting 20-box stack (step 289) ended unconverged and went to shock propagation.
+inline constexpr int kSettlingSolverSweeps = 600;
+inline constexpr double kSettlingSpeed = 0.05;
 
 /// The solver stops once no sweep changes any accumulated impulse by more than this
 /// (N s per kg of the lighter body, i.e. m/s). A resting body keeps a residual speed
@@ -48,6 +65,14 @@ inline constexpr double kEnergyRoundOff = 1e-9;
 /// a resting body is not kicked by the speed gravity gives it in one step (g dt is
 /// 0.04 m/s at 240 Hz and 0.16 m/s at 60 Hz).
 inline constexpr double kBounceThreshold = 0.5;
+
+/// Shock propagation ranks bodies by support (shock_propagation.h): a contact whose
+/// normal leans less than this cosine from vertical (more than about 84 degrees from it)
+/// holds nothing up and ranks neither body. Ranked by any contact, a static wall a
+/// column's top box leaned on ranked the column from the top down as well as from the
+/// ground up: the two met half way, a level of the column's middle boxes held the upper
+/// ones fixed, and ten-box columns by a wall rocked for good (pile of 1000, seed 11).
+inline constexpr double kSupportCosine = 0.1;
 
 /// Two edges crossing at an angle whose sine is below this are taken for a line contact
 /// when the solver curves their gap (contact_row.h): the point where they cross slides

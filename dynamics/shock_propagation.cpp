@@ -5,31 +5,36 @@
 #include <unordered_map>
 
 #include "dynamics/contact_sweeps.h"
+#include "dynamics/settings.h"
 
 namespace polysim::dynamics::solver {
 namespace {
 
 constexpr int kUnranked = -1;
 
-// Each body's level: 0 for a static body in the rows, 1 + the lowest level among its
-// contacts' other bodies for a moving one (breadth first), kUnranked if no static body
-// is reached. Rows with restitution do not link.
-std::vector<int> levelsOf(const std::vector<Row>& rows, int bodyCount) {
-  std::vector<std::vector<int>> neighbours(static_cast<size_t>(bodyCount));
+// Each body's level: 0 for a static body in the rows, 1 + the lowest level among the
+// bodies it rests on for a moving one (breadth first), kUnranked if it rests on nothing
+// that reaches a static body. A row links the body below to the one above when its
+// normal (from b towards a) leans up or down by kSupportCosine; without gravity (`up`
+// zero) every row links both ways. Rows with restitution do not link.
+std::vector<int> levelsOf(const std::vector<Row>& rows, int bodyCount, const Eigen::Vector3d& up) {
+  std::vector<std::vector<int>> above(static_cast<size_t>(bodyCount));  // the bodies each one holds up
   std::vector<int> level(static_cast<size_t>(bodyCount), kUnranked);
   std::deque<int> queue;
+  const bool anyWay = up.isZero(0.0);
   for (const Row& r : rows) {
     if (r.restitution > 0) continue;
     const int a = r.source->a, b = r.source->b;
-    neighbours[a].push_back(b);
-    neighbours[b].push_back(a);
+    const double rise = r.normal.dot(up);  // > 0: a rests on b
+    if (anyWay || rise >= kSupportCosine) above[b].push_back(a);
+    if (anyWay || rise <= -kSupportCosine) above[a].push_back(b);
     for (const auto& [i, body] : {std::pair{a, r.a}, std::pair{b, r.b}})
       if (body->isStatic && level[i] == kUnranked) level[i] = 0, queue.push_back(i);
   }
   while (!queue.empty()) {
     const int i = queue.front();
     queue.pop_front();
-    for (int j : neighbours[i])
+    for (int j : above[i])
       if (level[j] == kUnranked) level[j] = level[i] + 1, queue.push_back(j);
   }
   return level;
@@ -37,8 +42,8 @@ std::vector<int> levelsOf(const std::vector<Row>& rows, int bodyCount) {
 
 }  // namespace
 
-SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps) {
-  const std::vector<int> level = levelsOf(rows, bodyCount);
+SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, const Eigen::Vector3d& up) {
+  const std::vector<int> level = levelsOf(rows, bodyCount, up);
   // The rows of each level: those whose higher body is on it.
   std::vector<std::vector<int>> rowsOfLevel;
   for (size_t k = 0; k < rows.size(); ++k) {

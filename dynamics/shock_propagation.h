@@ -9,7 +9,9 @@
 // 0, what rests on it 1, what rests on that 2, ...), the bodies are solved again level
 // by level from the ground up, each level against the levels below held fixed: their
 // velocities as they are, their masses infinite. A level then has only its own bodies
-// to settle, and a resting column comes out at rest in one pass.
+// to settle, and a resting column comes out at rest in one pass. Levels follow support
+// only: a contact links a body to the one it rests on (its normal up, against gravity,
+// by at least kSupportCosine), not to a wall it leans on.
 
 #include <vector>
 
@@ -22,9 +24,10 @@ namespace polysim::dynamics::solver {
 /// its disk) and changing only that level's bodies' velocities; the rows keep the
 /// impulses found (the next step's warm start). Rows with restitution are left out (their
 /// rebound is Poisson's, after this pass), and so are bodies connected to no static body.
-/// `bodyCount`: the size of the body array the rows' sources index. The lower bodies take
+/// `bodyCount`: the size of the body array the rows' sources index; `up`: the unit vector
+/// against gravity (zero without gravity: every contact then links). The lower bodies take
 /// no reaction, so momentum is not conserved and kinetic energy may rise (a level resting
 /// on a body moving up); the caller checks. Returns the sweeps' work summed over levels.
-SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps);
+SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, const Eigen::Vector3d& up);
 
 }  // namespace polysim::dynamics::solver

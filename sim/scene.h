@@ -31,9 +31,11 @@ struct ContactSettings {
   double tolerance = collision::kDefaultContactTolerance;  // m
   double restitution = 0.0;
   double friction = 0.5;
-  /// Most sweeps of the contact solver in one solve ("solver_sweeps"): fewer trade
-  /// convergence on stacks and piles for cost (the sweep charts it).
-  int solverSweeps = dynamics::kMaxSolverIterations;
+  /// Most sweeps of the contact solver in one solve ("solver_sweeps"), a bound on every
+  /// group of contacts; only a settling group sweeps past kMaxSolverIterations
+  /// (dynamics/settings.h). Fewer trade convergence on stacks and piles for cost (the
+  /// sweep charts it).
+  int solverSweeps = dynamics::kSettlingSolverSweeps;
   /// How far apart (m) features of settled convex bodies may be and still go to the
   /// solver as speculative contacts ("speculative_reach", sim/speculative_contacts.h);
   /// 0: none, every new touch backs the island up to just contact.

@@ -9,6 +9,7 @@
 #include "collision/shapes.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/mass_properties.h"
+#include "dynamics/settings.h"
 
 namespace polysim::dynamics {
 namespace {
@@ -122,6 +123,61 @@ TEST(SolverStages, ShockPropagationSettlesASwayingStackInTwentySweeps) {
     for (size_t k = 1; k < bodies.size(); ++k) {
       EXPECT_LT(bodies[k].velocity.norm(), 1e-3) << "trial " << trial << ", box " << k;
       EXPECT_LT(bodies[k].angularVelocity.norm(), 1e-3) << "trial " << trial << ", box " << k;
+    }
+  }
+}
+
+// The same swaying stack of 12, its top box also touching a static wall on one side (two
+// corners, a horizontal normal, friction). The wall holds nothing up, so the stack is
+// still ranked from the ground and settles as before. Ranked by any contact (as when
+// `up` is not given), the wall made the top box a first level, the column was ranked
+// from both ends, and a middle level held the boxes above it fixed: boxes kept moving at
+// up to 10 cm/s, and in the pile of 1000 (seed 11) two ten-box columns by a wall rocked
+// for 30 s.
+TEST(SolverStages, ShockPropagationRanksByWhatHoldsABodyUpNotByAWallItLeansOn) {
+  constexpr int count = 12;
+  const int wall = count + 1;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<RigidBody> bodies = stackOfBoxes(count);
+    bodies.push_back(RigidBody::fixed());
+    for (int k = 1; k <= count; ++k)
+      bodies[k].velocity += 0.05 * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = 0.05 * V3(u(rng), u(rng), u(rng));
+    std::vector<ContactPoint> contacts = stackContacts(count, V3::UnitZ(), 0.8);
+    for (double z : {count - 1.0, count - 0.0})  // the top box's side at x = 0.5 on the wall
+      contacts.push_back({count, wall, V3(0.5, 0.0, z), -V3::UnitX(), 0.0, 0.0, 0.8, -1});
+    const SolveStats stats = solveContacts(bodies, contacts, kDt, 0.0, 20, V3::UnitZ());
+    EXPECT_GT(stats.shockSweeps, 0);
+    for (int k = 1; k <= count; ++k) {
+      EXPECT_LT(bodies[k].velocity.norm(), 1e-3) << "trial " << trial << ", box " << k;
+      EXPECT_LT(bodies[k].angularVelocity.norm(), 1e-3) << "trial " << trial << ", box " << k;
+    }
+  }
+}
+
+// Stacks of 12 swaying, at the default limit. A stack whose contacts all move slower than
+// kSettlingSpeed at kMaxSolverIterations is settling and sweeps on, up to the limit; one
+// swaying faster (a pile still landing) stops there. A limit below kMaxSolverIterations
+// (the scene's `solver_sweeps`) bounds both.
+TEST(SolverStages, OnlyASettlingGroupSweepsPastTheMovingLimit) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    for (double sway : {0.2 * kSettlingSpeed, 20 * kSettlingSpeed}) {
+      std::vector<RigidBody> bodies = stackOfBoxes(12);
+      for (size_t k = 1; k < bodies.size(); ++k)
+        bodies[k].velocity += sway * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = sway * V3(u(rng), u(rng), u(rng));
+      std::vector<RigidBody> again = bodies;
+      std::vector<ContactPoint> contacts = stackContacts(12, V3::UnitZ(), 0.8), same = contacts;
+      const SolveStats stats = solveContacts(bodies, contacts, kDt, 0.0, kSettlingSolverSweeps, V3::UnitZ());
+      if (sway < kSettlingSpeed) {
+        EXPECT_GT(stats.iterations, kMaxSolverIterations) << "trial " << trial;
+        EXPECT_LE(stats.iterations, kSettlingSolverSweeps) << "trial " << trial;
+      } else {
+        EXPECT_EQ(stats.iterations, kMaxSolverIterations) << "trial " << trial;
+      }
+      EXPECT_EQ(solveContacts(again, same, kDt, 0.0, 20, V3::UnitZ()).iterations, 20) << "trial " << trial;
     }
   }
 }

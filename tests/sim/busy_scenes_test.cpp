@@ -105,6 +105,20 @@ TEST(BusyScenes, TiltedPilesKeepTheEnergyBoundAndComeToRest) {
   }
 }
 
+// Nine columns of the tilted pile of 1000 (ten boxes each), those whose grid indices i and
+// j (box K = i + 10 j + 100 layer) are in [first, first + 3), with the ground and walls.
+Scene columnsOfThePile(unsigned long long seed, int first) {
+  Scene columns = generated("pile", 1000, seed);
+  const auto outside = [first](const BodySpec& b) {
+    if (b.isStatic) return false;
+    const int k = std::stoi(b.name.substr(3));
+    const int i = k % 10, j = k / 10 % 10;
+    return i < first || i >= first + 3 || j < first || j >= first + 3;
+  };
+  columns.bodies.erase(std::remove_if(columns.bodies.begin(), columns.bodies.end(), outside), columns.bodies.end());
+  return columns;
+}
+
 // The middle nine columns of the tilted pile of 1000: ten boxes each, every one tilted by
 // up to 0.3 rad, landing on one another and leaning on the next column. Their bodies
 // hover about the speed that marks a body still, which turns the order their pairs come
@@ -115,16 +129,25 @@ TEST(BusyScenes, TiltedPilesKeepTheEnergyBoundAndComeToRest) {
 TEST(BusyScenes, TiltedTowersOfTenComeToRest) {
   for (unsigned long long seed = 1; seed <= 8; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    Scene towers = generated("pile", 1000, seed);
-    const auto outside = [](const BodySpec& b) {
-      if (b.isStatic) return false;
-      const int k = std::stoi(b.name.substr(3));  // "boxK", K = i + 10 j + 100 layer
-      return k % 10 < 3 || k % 10 > 5 || k / 10 % 10 < 3 || k / 10 % 10 > 5;
-    };
-    towers.bodies.erase(std::remove_if(towers.bodies.begin(), towers.bodies.end(), outside), towers.bodies.end());
-    ASSERT_EQ(towers.bodies.size(), 95u);  // ground, four walls, 90 boxes
-    World w(towers);
+    World w(columnsOfThePile(seed, 3));
+    ASSERT_EQ(w.bodies().size(), 95u);  // ground, four walls, 90 boxes
     const Watched seen = run(w, 8.0);
+    expectInvariants(w, seen);
+  }
+}
+
+// The same towers in the pen's corner, where the top boxes lean on the walls. Shock
+// propagation once ranked a column from a wall down as well as from the ground up, and
+// held its middle boxes fixed for the ones above (shock_propagation.h); columns bridged
+// by a top box stopped at 60 sweeps with boxes at 1 to 3 cm/s (settings.h,
+// kSettlingSolverSweeps). Then seed 1 still moved at 8 s and seed 2 rested at 7.1 s;
+// since, seeds 1 to 8 rest by 4.4 s, at under 1e-6 m/s.
+TEST(BusyScenes, TiltedTowersInTheCornerComeToRest) {
+  for (unsigned long long seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    World w(columnsOfThePile(seed, 0));
+    ASSERT_EQ(w.bodies().size(), 95u);
+    const Watched seen = run(w, 6.0);
     expectInvariants(w, seen);
   }
 }

@@ -112,7 +112,7 @@ TEST(StepLog, ShockSweepsAreCountedWhereTheSweepsStopAtTheirLimit) {
     return std::vector<int>(shock.end() - 10, shock.end());
   };
   for (int sweeps : lastSteps(3)) EXPECT_GT(sweeps, 0);
-  for (int sweeps : lastSteps(dynamics::kMaxSolverIterations)) EXPECT_EQ(sweeps, 0);
+  for (int sweeps : lastSteps(dynamics::kSettlingSolverSweeps)) EXPECT_EQ(sweeps, 0);
 }
 
 TEST(StepLog, PolysimLogShowsEveryStepFieldAsWritten) {
