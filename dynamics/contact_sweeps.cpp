@@ -156,8 +156,9 @@ bool settling(const std::vector<Row>& rows, const std::vector<std::vector<int>>&
 // settling there (settings.h). Each sweep solves each block's friction rows, then its
 // normal impulses. Sweeps run in the given order (bottom-up: the first carries a stack's
 // weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel): a load
-// that must shift across a tall structure travels both ways. Every sweep bottom-up, 600 sweeps a step left the
-// 40-high pyramid leaning out of its plane by 5 cm in 3 s; alternating, 2.4 mm.
+// that must shift across a tall structure travels both ways. Every sweep bottom-up, 600
+// sweeps a step left the 40-high pyramid leaning out of its plane by 5 cm in 3 s;
+// alternating, 2.4 mm.
 SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
                       const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
   SolveStats stats;

@@ -34,9 +34,8 @@ class ContactSweeps {
   /// lighter body's mass) or its limit is reached: kMaxSolverIterations, or `maxSweeps`
   /// if fewer or if at that point no contact moves faster than kSettlingSpeed (a settling
   /// group, settings.h). Each sweep solves each block's friction rows, then its normal
-  /// impulses. Sweeps run in the rows' order (bottom-up: the first carries a
-  /// stack's weight down in one pass), then backwards, and so on (symmetric
-  /// Gauss-Seidel). `iterations` is the most sweeps any group took; `converged`, whether
+  /// impulses. Sweeps run in the rows' order (bottom-up: the first carries a stack's
+  /// weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel). `iterations` is the most sweeps any group took; `converged`, whether
   /// every group stopped on the tolerance.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 

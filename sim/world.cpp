@@ -289,7 +289,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   // island apart and then took it back: a fifth of a settling pile's cost (tilted piles
   // of 343, seeds 1 to 3, first 8 s: 11.2 against 9.1 s of CPU).
   if (stepStart) warmStartFromLastSolve(lastSolved_, points, horizon);
-  const Eigen::Vector3d up = scene_.gravity.isZero(0.0) ? Eigen::Vector3d::Zero() : Eigen::Vector3d(-scene_.gravity.normalized());
+  const Eigen::Vector3d up = scene_.gravity.isZero(0.0) ? Eigen::Vector3d::Zero() : scene_.up();  // zero: no support order
   const dynamics::SolveStats solved =
       dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps, up);
   report_.solverIterations += solved.iterations;

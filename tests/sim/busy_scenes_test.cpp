@@ -105,8 +105,8 @@ TEST(BusyScenes, TiltedPilesKeepTheEnergyBoundAndComeToRest) {
   }
 }
 
-// Nine columns of the tilted pile of 1000 (ten boxes each), those whose grid indices i and
-// j (box K = i + 10 j + 100 layer) are in [first, first + 3), with the ground and walls.
+// Nine ten-box columns of the tilted pile of 1000 (box K = i + 10 j + 100 layer, i and j in
+// [first, first + 3)), with the ground and walls.
 Scene columnsOfThePile(unsigned long long seed, int first) {
   Scene columns = generated("pile", 1000, seed);
   const auto outside = [first](const BodySpec& b) {
@@ -136,12 +136,10 @@ TEST(BusyScenes, TiltedTowersOfTenComeToRest) {
   }
 }
 
-// The same towers in the pen's corner, where the top boxes lean on the walls. Shock
-// propagation once ranked a column from a wall down as well as from the ground up, and
-// held its middle boxes fixed for the ones above (shock_propagation.h); columns bridged
-// by a top box stopped at 60 sweeps with boxes at 1 to 3 cm/s (settings.h,
-// kSettlingSolverSweeps). Then seed 1 still moved at 8 s and seed 2 rested at 7.1 s;
-// since, seeds 1 to 8 rest by 4.4 s, at under 1e-6 m/s.
+// The same towers in the pen's corner, their tops leaning on the walls. Shock propagation
+// once ranked a column from a wall down as well as from the ground up (shock_propagation.h),
+// and bridged columns stopped at 60 sweeps at 1 to 3 cm/s (kSettlingSolverSweeps). Then
+// seed 1 still moved at 8 s and seed 2 rested at 7.1 s; now seeds 1 to 8 rest by 4.4 s.
 TEST(BusyScenes, TiltedTowersInTheCornerComeToRest) {
   for (unsigned long long seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
