@@ -95,7 +95,7 @@ std::vector<SweepSetting> sweepSettings(bool quick) {
   const std::vector<double> tolerances = quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4, 1e-5};
   const std::vector<int> iterations = quick ? std::vector<int>{20} : std::vector<int>{10, 20, 50};
   // Beside the default (200, of which only a settling group uses more than 60): fewer,
-  // and 600 (the chart's readings were made with 600 for every group).
+  // and more.
   const std::vector<int> solverSweeps = quick ? std::vector<int>{30} : std::vector<int>{20, 600};
   std::vector<SweepSetting> settings;
   for (double dt : dts) {
