@@ -20,5 +20,7 @@ cmake --build build-sanitize -j2
 # The chart test is Python drawing the quick sweep, which Sweep.* already runs here; the
 # Slurm test starts daemons around the same planned runs that the GNU parallel test runs here;
 # the viewer test spends its time in Chromium, and ViewData.* / ViewLog.* read its logs here.
+# The wedged box replays a chaotic state to print precision: clang's rounding need not
+# repeat the creep it pins.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^Chart\.|^View\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|DroppedColumn|FrictionlessColumn|StackOf40|Dominoes|PyramidOfBase40)'
+  ctest --test-dir build-sanitize --output-on-failure -j2 -E 'StandsFor60s|^FailureModes\.BoxWedged|^Chart\.|^View\.|^SweepPlan\.Slurm|^BusyScenes\.(Tilted|Column|DroppedColumn|FrictionlessColumn|StackOf40|Dominoes|PyramidOfBase40)'
