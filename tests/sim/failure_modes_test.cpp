@@ -139,8 +139,9 @@ TEST(FailureModes, ThinPlateLandsFlat) {
 // land, replayed to print precision; sleeping off). It lies tilted 33 degrees on one
 // column's top edge, a corner of the other column's top box against its side, and pushes
 // both apart. Every solve ends unconverged at the settling limit (kSettlingSolverSweeps),
-// and shock propagation does not settle it: its levels converge, but each leaves its
-// bodies moving with the level below, a few mm/s at the columns' tops. At 200 sweeps a
+// and shock propagation does not settle it: its top levels end at the friction limit,
+// their boxes sliding at 3 to 6 mm/s, pushed by what the sweeps left on the rows above
+// harder than their normal impulse lets friction hold. At 200 sweeps a
 // solve the columns rock at up to 1 cm/s and rest only after 13 s; at 600 they rest by
 // 3.0 s. Pinned both ways: when the settling limit rests it, say so in the README.
 TEST(FailureModes, BoxWedgedBetweenTwoColumnsRestsOnlyWithMoreSweeps) {
