@@ -67,7 +67,8 @@ struct SolveStats {
 /// step loop gives them bottom-up). Contacts that share no moving body (two piles on one
 /// floor) are swept apart, each group until it converges or reaches its limit on its own:
 /// `maxSweeps` (the scene's `solver_sweeps`) bounds every group, and one still moving
-/// faster than kSettlingSpeed stops at kMaxSolverIterations (settings.h).
+/// faster than kSettlingSpeed, or whose bodies all rested after their last solve, stops
+/// at kMaxSolverIterations (settings.h). Each body's `restedAfterLastSolve` is set here.
 /// The compression solve is kept from adding kinetic energy: where the sweeps end with
 /// more than the bodies had (a warm start larger than the step needs, not taken back
 /// within `maxSweeps`), the solve starts again from zero impulses with no target above

@@ -151,10 +151,23 @@ bool settling(const std::vector<Row>& rows, const std::vector<std::vector<int>>&
   return true;
 }
 
+// Every moving body of the group ended its last solve at rest, and every contact has
+// friction. Such a group's sweeps stop at kMaxSolverIterations like a moving one's: what
+// they leave, shock propagation settles, as it did the step before. Frictionless contacts
+// are left out: columns of frictionless cups, nesting, reached the event bound in 122
+// steps against 12 (seed 2) and 71 against 1 (seed 4) without their settling sweeps.
+bool rested(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks, const std::vector<int>& group) {
+  const auto restedBody = [](const RigidBody* b) { return b->isStatic || b->restedAfterLastSolve; };
+  for (int k : group)
+    for (int row : blocks[k])
+      if (rows[row].friction <= 0 || !restedBody(rows[row].a) || !restedBody(rows[row].b)) return false;
+  return true;
+}
+
 // Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
 // its limit is reached: kMaxSolverIterations, or maxSweeps if fewer or if the group is
-// settling there (settings.h). Each sweep solves each block's friction rows, then its
-// normal impulses. Sweeps run in the given order (bottom-up: the first carries a stack's
+// settling there and did not rest after its last solve (settings.h). Each sweep solves
+// each block's friction rows, then its normal impulses. Sweeps run in the given order (bottom-up: the first carries a stack's
 // weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel): a load
 // that must shift across a tall structure travels both ways. Every sweep bottom-up, 600
 // sweeps a step left the 40-high pyramid leaning out of its plane by 5 cm in 3 s;
@@ -163,7 +176,8 @@ SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>
                       const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
   SolveStats stats;
   for (int limit = std::min(maxSweeps, kMaxSolverIterations);;) {
-    if (stats.iterations == limit && limit < maxSweeps && settling(rows, blocks, group)) limit = maxSweeps;
+    if (stats.iterations == limit && limit < maxSweeps && settling(rows, blocks, group) && !rested(rows, blocks, group))
+      limit = maxSweeps;
     if (stats.iterations >= limit) break;
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass

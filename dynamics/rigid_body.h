@@ -21,6 +21,10 @@ struct RigidBody {
   /// kinetic energy and no bounce, and the solver sets them afresh at every solve.
   Eigen::Vector3d pushVelocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d pushAngularVelocity = Eigen::Vector3d::Zero();
+  /// Whether the body ended the last contact solve it was in at rest (slower than
+  /// kRestSpeed, turning slower than kRestSpeed per metre). A group of such bodies is held
+  /// by shock propagation and takes no settling sweeps (contact_sweeps.cpp).
+  bool restedAfterLastSolve = false;
 
   Eigen::Vector3d centerOfMassLocal = Eigen::Vector3d::Zero();  // m, body frame
   double mass = 0.0;                                            // kg; 0 for static

@@ -33,6 +33,10 @@ inline constexpr int kMaxSolverIterations = 60;
 /// and the whole column converges again (the 20-box stack, sleeping off: 93 sweeps once
 /// in 240 steps at 200; at 250 one solve of 250 ended unconverged and went on to shock
 /// propagation, which BusyScenes.RestingStackOf20TakesAFewSweepsAStep forbids).
+/// A group whose bodies all ended their last solve at rest (kRestSpeed), all of its
+/// contacts with friction, is not settling but resting, and stops at kMaxSolverIterations:
+/// shock propagation holds it. A resting pyramid of 210 boxes paid 200 sweeps in each of its
+/// 31 steps before it slept (0.82 to 1.04 s of CPU over 10 s; 0.50 without).
 inline constexpr int kSettlingSolverSweeps = 200;
 inline constexpr double kSettlingSpeed = 0.05;
 

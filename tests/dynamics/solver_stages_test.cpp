@@ -182,6 +182,40 @@ TEST(SolverStages, OnlyASettlingGroupSweepsPastTheMovingLimit) {
   }
 }
 
+// The same settling stacks, their bodies marked as having rested after their last solve:
+// with friction the group is resting, not settling, and stops at kMaxSolverIterations
+// (shock propagation holds it); frictionless it sweeps on. A solve marks each body by how
+// it leaves: at rest (kRestSpeed) or not.
+TEST(SolverStages, ARestingGroupWithFrictionStopsAtTheMovingLimit) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    for (double mu : {0.8, 0.0}) {
+      std::vector<RigidBody> bodies = stackOfBoxes(12);
+      for (size_t k = 1; k < bodies.size(); ++k) {
+        const double sway = 0.2 * kSettlingSpeed;
+        bodies[k].velocity += sway * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = sway * V3(u(rng), u(rng), u(rng));
+        bodies[k].restedAfterLastSolve = true;
+      }
+      std::vector<ContactPoint> contacts = stackContacts(12, V3::UnitZ(), mu);
+      const SolveStats stats = solveContacts(bodies, contacts, kDt, 0.0, kSettlingSolverSweeps, V3::UnitZ());
+      if (mu > 0)
+        EXPECT_EQ(stats.iterations, kMaxSolverIterations) << "trial " << trial;
+      else
+        EXPECT_GT(stats.iterations, kMaxSolverIterations) << "trial " << trial;
+      for (size_t k = 1; k < bodies.size(); ++k)
+        EXPECT_EQ(bodies[k].restedAfterLastSolve, bodies[k].velocity.norm() < kRestSpeed && bodies[k].angularVelocity.norm() < kRestSpeed);
+    }
+  }
+  std::vector<RigidBody> thrown = stackOfBoxes(2);
+  thrown[2].velocity = V3(0, 0, 3);  // leaves the contact: not at rest
+  thrown[2].restedAfterLastSolve = true;
+  std::vector<ContactPoint> contacts = stackContacts(2, V3::UnitZ(), 0.8);
+  solveContacts(thrown, contacts, kDt, 0.0, kSettlingSolverSweeps, V3::UnitZ());
+  EXPECT_FALSE(thrown[2].restedAfterLastSolve);
+  EXPECT_TRUE(thrown[1].restedAfterLastSolve);
+}
+
 // Stacks whose boxes move fast and at random, up as well as down, with 2 sweeps: shock
 // propagation hands a level its lower neighbours' velocities without their reaction, so
 // a box hit from below can leave with more energy than the stack had. The solver then
