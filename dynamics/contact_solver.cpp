@@ -236,7 +236,8 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   }
   applyRestitution(rows, energyBefore);
   solvePushes(rows, sweeps, allowedOverlap, dt);
-  for (RigidBody* b : moving) b->restedAfterLastSolve = b->velocity.norm() < kRestSpeed && b->angularVelocity.norm() < kRestSpeed;
+  // The test of rest per metre of size (a body's own size is the scene's, not the solver's).
+  for (RigidBody* b : moving) b->restedAfterLastSolve = atRest(b->velocity, b->angularVelocity, 1.0);
   for (Row& r : rows) {  // store, for the next step's warm start
     r.source->normalImpulse = r.normalImpulse;
     r.source->frictionImpulse = r.tangent1 * r.frictionImpulse.x() + r.tangent2 * r.frictionImpulse.y();

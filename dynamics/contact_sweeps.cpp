@@ -167,11 +167,11 @@ bool rested(const std::vector<Row>& rows, const std::vector<std::vector<int>>& b
 // Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
 // its limit is reached: kMaxSolverIterations, or maxSweeps if fewer or if the group is
 // settling there and did not rest after its last solve (settings.h). Each sweep solves
-// each block's friction rows, then its normal impulses. Sweeps run in the given order (bottom-up: the first carries a stack's
-// weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel): a load
-// that must shift across a tall structure travels both ways. Every sweep bottom-up, 600
-// sweeps a step left the 40-high pyramid leaning out of its plane by 5 cm in 3 s;
-// alternating, 2.4 mm.
+// each block's friction rows, then its normal impulses. Sweeps run in the given order
+// (bottom-up: the first carries a stack's weight down in one pass), then backwards, and so
+// on (symmetric Gauss-Seidel): a load that must shift across a tall structure travels both
+// ways. Every sweep bottom-up, 600 sweeps a step left the 40-high pyramid leaning out of
+// its plane by 5 cm in 3 s; alternating, 2.4 mm.
 SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
                       const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
   SolveStats stats;
