@@ -2,6 +2,7 @@
 // ObjNode, the seed's object record, and the object database the module works on.
 
 #include <Eigen/Geometry>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,12 @@ struct ObjNode {
   /// Upper bound (m) on how far any point of the object moves during the interval; used
   /// by collisionDetect() to catch objects passing through each other. Infinity: unknown.
   double motionBound = 0.0;
+  /// Upper bound (m per unit of the interval's time t) on how fast any point of the
+  /// object moves anywhere in the interval: between t1 and t2 no point moves more than
+  /// motionRate |t2 - t1|. Lets collisionDetect()'s bisection stop watching pairs that
+  /// cannot interpenetrate within its shrinking bracket. Infinity: unknown (every pair
+  /// stays watched); ignored for an object without ctrans, which does not move.
+  double motionRate = std::numeric_limits<double>::infinity();
   /// The object's least thickness (m; see thickness.h), computed when it is added.
   double thickness = 0.0;
   /// Its index in the database it was added to; copies into other databases (an

@@ -156,6 +156,7 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
   result.status = found.atTime->status;
   result.pairs = std::move(found.atTime->pairs);
   result.iterations = s.tests;
+  result.pairTests = s.pairTests;
   result.pairsMeeting = static_cast<int>(s.meeting.size());
   result.pairsWatched = static_cast<int>(s.watched.size());
   result.separations = s.separations;

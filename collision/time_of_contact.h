@@ -46,6 +46,8 @@ struct TocResult {
   std::vector<PairResult> pairs;
   /// Intersection tests made (each setTime + test counts one).
   int iterations = 0;
+  /// Pairs those tests were given, summed over the tests: the search's work.
+  long pairTests = 0;
   /// States whose signed separation regula falsi measured instead of testing them (0
   /// for bisection); a separation of convex objects costs a fraction of a test.
   int separations = 0;

@@ -21,19 +21,31 @@ IntersectionResult Search::statusAt(double t, bool contacts) {
   options.contacts = contacts;
   // No other pair comes within the tolerance in the interval; of those, only the watched
   // can interpenetrate, and a verdict wants nothing else.
-  options.onlyPairs = contacts ? &meeting : &watched;
+  options.onlyPairs = contacts ? &meeting : narrowed ? &inBracket : &watched;
+  pairTests += static_cast<long>(options.onlyPairs->size());
   return test4Intersection(db, ws, options);
 }
+
+namespace {
+
+// False when A and B are convex and their separation at their current poses, less
+// `motion` (m, how far their points can move towards each other), stays above the
+// depth of interpenetration by a margin (kUnwatchedMarginFraction): then no pose within
+// that motion interpenetrates.
+bool mayInterpenetrate(const ObjNode& A, const ObjNode& B, double motion, double tolerance) {
+  const std::optional<double> separation = convexSeparation(A, B);
+  return !separation || *separation - motion <= -(1.0 - kUnwatchedMarginFraction) * tolerance;
+}
+
+}  // namespace
 
 PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, const PairIds& meeting) {
   PairIds ids;
   db.setTime(0.0);
-  const double deepest = -(1.0 - kUnwatchedMarginFraction) * db.tolerance;
   for (const auto& [a, b] : meeting) {
     const ObjNode& A = db.objects[a];
     const ObjNode& B = db.objects[b];
-    const std::optional<double> separation = convexSeparation(A, B);
-    if (!separation || *separation - (A.motionBound + B.motionBound) <= deepest) ids.emplace_back(a, b);
+    if (mayInterpenetrate(A, B, A.motionBound + B.motionBound, db.tolerance)) ids.emplace_back(a, b);
   }
   db.setTime(1.0);
   return ids;
@@ -155,9 +167,44 @@ bool narrowEnough(const Bracket& br, double eps) {
 
 }  // namespace
 
+namespace {
+
+// How much the bracket shrinks between two narrowings of its pairs (bisect()): each costs
+// a separation per pair still watched (a fraction of a test of the pair), and the pairs
+// it can drop are few until the bracket is a small part of the step.
+constexpr double kNarrowingShrink = 4.0;
+
+// Keeps, of the pairs watched in the bracket, those that can interpenetrate somewhere in
+// it: measured at its start, each pair's points move towards each other by at most the
+// sum of the objects' motion rates times its width (ObjNode::motionRate). The pairs
+// interpenetrating at its end always stay. In a landing pile's island of 600 boxes,
+// most of the 500 pairs watched are resting contacts that need the whole step to sink
+// a tolerance, not the few microseconds a bisection ends on.
+void narrowToBracket(Search& s, const Bracket& br) {
+  s.db.setTime(0.5 * (br.lo + br.hi));
+  const double reach = 0.5 * (br.hi - br.lo);  // from the middle to either end
+  const auto rate = [](const ObjNode& o) { return o.ctrans ? o.motionRate : 0.0; };
+  PairIds kept;
+  for (const auto& [a, b] : s.narrowed ? s.inBracket : s.watched) {
+    const ObjNode& A = s.db.objects[a];
+    const ObjNode& B = s.db.objects[b];
+    const bool crossing = std::find(br.hiPairs.begin(), br.hiPairs.end(), std::pair{a, b}) != br.hiPairs.end();
+    if (crossing || mayInterpenetrate(A, B, (rate(A) + rate(B)) * reach, s.db.tolerance)) kept.emplace_back(a, b);
+  }
+  s.inBracket = std::move(kept);
+  s.narrowed = true;
+}
+
+}  // namespace
+
 Found bisect(Search& s, Bracket& br) {
+  double narrowedAt = 2.0 * kNarrowingShrink;  // wider than any bracket: narrow at once
   for (int guess = 0; guess < kMaxTimeOfContactIterations; ++guess) {
     if (narrowEnough(br, s.db.tolerance)) return {br.lo, TocStop::TimeTolerance};
+    if (br.hi - br.lo <= narrowedAt / kNarrowingShrink) {
+      narrowToBracket(s, br);
+      narrowedAt = br.hi - br.lo;
+    }
     const double t = 0.5 * (br.lo + br.hi);
     const IntersectionResult r = s.statusAt(t);
     if (r.status == Status::Interpenetrating) {

@@ -34,12 +34,18 @@ struct Search {
   IntersectionWorkspace& ws;
   PairIds meeting = pairsThatCanMeet(db);
   PairIds watched = pairsThatCanInterpenetrate(db, meeting);
+  /// The watched pairs that can still interpenetrate inside the root finder's bracket,
+  /// once it has narrowed them (bisect()); until then, empty and unused.
+  PairIds inBracket = {};
+  bool narrowed = false;
   int tests = 0;
+  long pairTests = 0;   // pairs given to those tests, summed
   int separations = 0;  // states whose signed separation was measured
 
   /// Sets the database to time t and returns the status of the pairs: with their
   /// contacts, of every pair that can meet; without, only of those watched (a pair that
-  /// cannot interpenetrate decides nothing in the search).
+  /// cannot interpenetrate decides nothing in the search), or of those that can in the
+  /// bracket once it has narrowed them.
   IntersectionResult statusAt(double t, bool contacts = false);
 };
 

@@ -15,4 +15,10 @@ double pathMotionBound(const dynamics::RigidBody& body, double radius, double du
   return duration * (speed + 0.5 * gravity.norm() * duration + spin * radius);
 }
 
+double pathMotionRate(const dynamics::RigidBody& body, double radius, double duration, const Eigen::Vector3d& gravity) {
+  const double speed = (body.velocity + body.pushVelocity).norm();
+  const double spin = (body.angularVelocity + body.pushAngularVelocity).norm();
+  return duration * (speed + gravity.norm() * duration + spin * radius);
+}
+
 }  // namespace polysim::sim

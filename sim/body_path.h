@@ -24,4 +24,10 @@ void bodyPathPose(double s, const void* info, Eigen::Isometry3d& X_WO);
 double pathMotionBound(const dynamics::RigidBody& body, double radius, double duration,
                        const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
 
+/// How fast any vertex can move along the path, in m per unit of the path's parameter s
+/// in [0, 1] (ObjNode::motionRate): T (|v| + |g| T + |w| r), the speed at the path's
+/// end bounding the speed along it.
+double pathMotionRate(const dynamics::RigidBody& body, double radius, double duration,
+                      const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
+
 }  // namespace polysim::sim

@@ -64,6 +64,7 @@ int tocCommand(const std::string& scenePath, double interval, const std::string&
     node.ctrans = kinematicPose;
     node.info = &motions[i];
     node.motionBound = kinematicMotionBound(motions[i], *node.mesh);
+    node.motionRate = node.motionBound;  // constant speeds: the bound over [0, 1] is the rate
   }
   db.setTime(1.0);  // collisionDetect starts from the poses at the end of the interval
   const collision::TocResult r = collision::collisionDetect(db, options);

@@ -315,6 +315,7 @@ void World::predictMotion(const std::vector<int>& island, double duration) {
     paths_[i].duration = duration;
     paths_[i].gravity = falling ? scene_.gravity : Eigen::Vector3d::Zero();
     node.motionBound = moving ? pathMotionBound(b, sizes_[i], duration, paths_[i].gravity) : 0.0;
+    node.motionRate = moving ? pathMotionRate(b, sizes_[i], duration, paths_[i].gravity) : 0.0;
   }
 }
 

@@ -27,6 +27,7 @@ class TocWorld {
     motions_.push_back(std::make_unique<sim::KinematicMotion>(sim::KinematicMotion{X, v, w, 1.0}));
     const int id = addOnPath(mesh, X, sim::kinematicPose, motions_.back().get(), 0.0);
     db.objects[id].motionBound = sim::kinematicMotionBound(*motions_.back(), *db.objects[id].mesh);
+    db.objects[id].motionRate = db.objects[id].motionBound;  // constant speeds
     return id;
   }
   /// A moving object on its own path: `ctrans` sets its pose at t from `info`; it moves
