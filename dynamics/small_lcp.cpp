@@ -1,5 +1,6 @@
 #include "dynamics/small_lcp.h"
 
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
 #include <vector>
@@ -42,6 +43,41 @@ Members membersOf(unsigned set, int n) {
   return m;
 }
 
+// Ass's inverse in closed form (fixed size) when it is far from singular: the determinant
+// of a symmetric positive definite matrix is at most the product of its diagonal
+// (Hadamard), and one above kLcpRoundOff times it cannot come from round-off. Else the
+// least-norm solution's operator, as CompleteOrthogonalDecomposition::solve would apply
+// it, rank found to the decomposition's own threshold: four coplanar corners of one face
+// carry a load in infinitely many ways, and the least-norm one spreads it evenly. A
+// landing pile makes 7.9 operators per block and solve (its tilted boxes rest on two
+// corners or three: pile of 343, first 1.5 s); made in closed form where they can be,
+// the run took 17% fewer instructions.
+template <int N>
+bool invertIfRegular(const BlockMatrix& Ass, BlockMatrix& inverse) {
+  const Eigen::Matrix<double, N, N> M = Ass;
+  const double diagonal = M.diagonal().prod();
+  if (!(diagonal > 0.0)) return false;
+  Eigen::Matrix<double, N, N> inv;
+  double determinant = 0.0;
+  bool invertible = false;
+  M.computeInverseAndDetWithCheck(inv, determinant, invertible, kLcpRoundOff * diagonal);
+  if (!invertible || determinant <= 0.0) return false;
+  inverse = inv;
+  return true;
+}
+
+BlockMatrix leastNormOperator(const BlockMatrix& Ass) {
+  BlockMatrix inverse;
+  switch (Ass.rows()) {
+    case 1: if (invertIfRegular<1>(Ass, inverse)) return inverse; break;
+    case 2: if (invertIfRegular<2>(Ass, inverse)) return inverse; break;
+    case 3: if (invertIfRegular<3>(Ass, inverse)) return inverse; break;
+    case 4: if (invertIfRegular<4>(Ass, inverse)) return inverse; break;
+    default: break;
+  }
+  return Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse();
+}
+
 }  // namespace
 
 SmallLcp::SmallLcp(const BlockMatrix& A) : A_(A), largestCoefficient_(A.size() ? A.cwiseAbs().maxCoeff() : 0.0) {}
@@ -56,9 +92,7 @@ const double* SmallLcp::expandedPseudoInverse(unsigned set, int n) const {
     BlockMatrix Ass(in.count, in.count);
     for (int i = 0; i < in.count; ++i)
       for (int j = 0; j < in.count; ++j) Ass(i, j) = A_(in.index[i], in.index[j]);
-    // The least-norm solution's operator, as CompleteOrthogonalDecomposition::solve would
-    // apply it: rank found to the decomposition's own threshold.
-    const BlockMatrix pinv = Eigen::CompleteOrthogonalDecomposition<BlockMatrix>(Ass).pseudoInverse();
+    const BlockMatrix pinv = leastNormOperator(Ass);
     for (int i = 0; i < in.count; ++i)
       for (int j = 0; j < in.count; ++j) expanded(in.index[i], in.index[j]) = pinv(i, j);
   }

@@ -24,8 +24,9 @@ using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMa
 /// sets first; where A is singular (four coplanar corners of one rigid face carry a load
 /// in infinitely many ways), a set's system is solved in the least-norm sense, so the
 /// load spreads evenly, as on a real face, not onto whichever corner came first. Each
-/// set's pseudo-inverse is made once, when first needed, and kept expanded to n x n
-/// (zero outside the set); a try is then two fixed-size products of at most 4 x 4.
+/// set's pseudo-inverse (its inverse in closed form where it is regular beyond round-off)
+/// is made once, when first needed, and kept expanded to n x n (zero outside the set); a
+/// try is then two fixed-size products of at most 4 x 4.
 class SmallLcp {
  public:
   explicit SmallLcp(const BlockMatrix& A);
