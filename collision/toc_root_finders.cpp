@@ -175,8 +175,8 @@ namespace {
 constexpr double kNarrowingShrink = 4.0;
 
 // Keeps, of the pairs watched in the bracket, those that can interpenetrate somewhere in
-// it: measured at its start, each pair's points move towards each other by at most the
-// sum of the objects' motion rates times its width (ObjNode::motionRate). The pairs
+// it: measured at its middle, each pair's points move towards each other by at most the
+// sum of the objects' motion rates times half its width (ObjNode::motionRate). The pairs
 // interpenetrating at its end always stay. In a landing pile's island of 600 boxes,
 // most of the 500 pairs watched are resting contacts that need the whole step to sink
 // a tolerance, not the few microseconds a bisection ends on.
