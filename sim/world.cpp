@@ -62,15 +62,21 @@ const StepReport& World::step(double dt) {
                   dynamics::kAllowedOverlapFraction * db_.tolerance, &bouncingAtStart);
   std::vector<collision::PairResult> contactsAfter;
   std::vector<char> stepped(bodies_.size(), 0);
-  for (const std::vector<int>& island : islandsOfStep(dt)) {
-    if (std::all_of(island.begin(), island.end(), [this](int i) { return asleep_[i] != 0; })) continue;
-    for (int i : island) {
-      if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
-      stepped[i] = 1;
+  std::vector<std::vector<int>> islands = islandsOfStep(dt);
+  if (islands.size() > 1) {
+    const StepStart start{bodies_, db_.objects, free_, asleep_, slowFor_, report_, firstContact_};
+    if (!stepIslands(islands, dt, contactsAfter, stepped)) {  // one outgrew its bounds: the step again, as one island
+      bodies_ = start.bodies, db_.objects = start.objects, free_ = start.free, asleep_ = start.asleep;
+      slowFor_ = start.slowFor, report_ = start.report, firstContact_ = start.firstContact;
+      contactsAfter.clear();
+      std::fill(stepped.begin(), stepped.end(), 0);
+      islands.assign(1, {});
+      for (size_t i = 0; i < bodies_.size(); ++i)
+        if (!bodies_[i].isStatic) islands[0].push_back(static_cast<int>(i));
+      report_.islandsRedone = true;
     }
-    stepIsland(island, dt, contactsAfter);
-    sleepIfSettled(island, dt);
   }
+  if (islands.size() == 1) stepIslands(islands, dt, contactsAfter, stepped);
   for (const collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts
     if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(p);
   contacts_ = std::move(contactsAfter);
@@ -80,6 +86,36 @@ const StepReport& World::step(double dt) {
   time_ = sum;
   report_.time = time_;
   return report_;
+}
+
+bool World::stepIslands(const std::vector<std::vector<int>>& islands, double dt,
+                        std::vector<collision::PairResult>& contactsAfter, std::vector<char>& stepped) {
+  watchBounds_ = islands.size() > 1;
+  for (const std::vector<int>& island : islands) {
+    if (std::all_of(island.begin(), island.end(), [this](int i) { return asleep_[i] != 0; })) continue;
+    for (int i : island) {
+      if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
+      stepped[i] = 1;
+    }
+    outgrown_ = false;
+    stepIsland(island, dt, contactsAfter);
+    if (outgrown_) return false;
+    sleepIfSettled(island, dt);
+  }
+  return true;
+}
+
+bool World::outgrewItsBounds(const std::vector<int>& island) {
+  if (!watchBounds_) return false;
+  for (int i : island) {
+    const collision::ObjNode& node = db_.objects[i];
+    const Eigen::AlignedBox3d reach = collision::grow(collision::worldContainer(node), node.motionBound + db_.tolerance);
+    if (collision::grow(stepBounds_[i], kBoundsRoundOff).contains(reach)) continue;
+    for (size_t j = 0; j < bodies_.size() && !outgrown_; ++j)  // rare: only a body that sped up
+      outgrown_ = !bodies_[j].isStatic && !std::binary_search(island.begin(), island.end(), static_cast<int>(j)) &&
+                  stepBounds_[j].intersects(reach);
+  }
+  return outgrown_;
 }
 
 void World::placeBody(int body, const Eigen::Isometry3d& pose, const Eigen::Vector3d& velocity,
@@ -135,8 +171,9 @@ void World::sleepIfSettled(const std::vector<int>& island, double dt) {
   }
 }
 
-std::vector<std::vector<int>> World::islandsOfStep(double duration) const {
-  std::vector<Eigen::AlignedBox3d> bounds(bodies_.size());
+std::vector<std::vector<int>> World::islandsOfStep(double duration) {
+  std::vector<Eigen::AlignedBox3d>& bounds = stepBounds_;
+  bounds.assign(bodies_.size(), Eigen::AlignedBox3d());
   std::vector<char> dynamic(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {
     const dynamics::RigidBody& b = bodies_[i];
@@ -163,6 +200,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
   report_.islands.push_back({static_cast<int>(island.size()), 0});
   for (int& events = report_.islands.back().events; remaining > 0;) {
     predictMotion(island, remaining);                        // each body's path over the rest of the step
+    if (outgrewItsBounds(island)) return;                    // its bodies may reach another island's now
     collision::TocResult toc = detectCollisions(db);         // back up to the island's first contact, if any
     const double elapsed = toc.time * remaining;
     commitPoses(island, elapsed);                            // its bodies move to that state

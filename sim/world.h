@@ -54,6 +54,11 @@ inline constexpr double kStalledGapFraction = 0.5;
 /// test, which their contacts' gaps follow, and speculate further anyway.
 inline constexpr double kWideBandFactor = 2.0;
 
+/// Round-off allowed (m) when a body's reach over the rest of a step is checked against
+/// the swept bounds its island was found by (World::outgrewItsBounds): the two are the
+/// same sum taken in another order when nothing sped the body up.
+inline constexpr double kBoundsRoundOff = 1e-9;
+
 /// Pairs of body indices, the smaller first.
 using BodyPairs = std::set<std::pair<int, int>>;
 inline std::pair<int, int> bodyPair(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
@@ -77,6 +82,9 @@ struct StepReport {
   std::vector<StepEvent> events;
   std::vector<IslandReport> islands;  // in the order they stepped
   bool eventLimitHit = false;
+  /// An island's body outgrew the swept bounds its island was found by (an event's
+  /// impulses sped it up), so the step was taken again from its start as one island.
+  bool islandsRedone = false;
   double penetration = 0.0;  // m, deepest overlap among the committed states
   int solverIterations = 0;  // the contact solver's sweeps, summed over the step's solves
   int shockSweeps = 0;       // and shock propagation's (dynamics/shock_propagation.h)
@@ -170,8 +178,19 @@ class World {
   /// The pairs of `contacts` that bounce (bounces()), as body pairs.
   BodyPairs bouncingPairs(const std::vector<collision::PairResult>& contacts) const;
   /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
-  /// that overlap over `duration`.
-  std::vector<std::vector<int>> islandsOfStep(double duration) const;
+  /// that overlap over `duration`; keeps each body's bounds in stepBounds_.
+  std::vector<std::vector<int>> islandsOfStep(double duration);
+  /// Steps each island that is not all asleep (waking the sleeping bodies of the others)
+  /// and marks its bodies in `stepped`; false, at once, when one outgrew its bounds.
+  bool stepIslands(const std::vector<std::vector<int>>& islands, double dt,
+                   std::vector<collision::PairResult>& contactsAfter, std::vector<char>& stepped);
+  /// True (and outgrown_ set) when, with several islands, a body of `island` may now move
+  /// beyond the swept bounds its island was found by (stepBounds_) into those of a body of
+  /// another island: an event's impulses sped it up, and over the rest of the step it may
+  /// meet that body, which its island's database does not hold (a refilled pen: a box
+  /// kicked into a resting one of another island, found interpenetrating at the next
+  /// step's start).
+  bool outgrewItsBounds(const std::vector<int>& island);
   /// Steps one island through its contact events over `dt`; appends its contacts at the
   /// end of the step to `contactsAfter`.
   void stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter);
@@ -193,6 +212,17 @@ class World {
   /// The body moves this step: dynamic and not asleep.
   bool awake(int body) const { return !bodies_[body].isStatic && !asleep_[body]; }
 
+  /// What a step's islands change, kept from before them (World::step) while there are
+  /// several, to take the step again as one island.
+  struct StepStart {
+    std::vector<dynamics::RigidBody> bodies;
+    std::vector<collision::ObjNode> objects;
+    std::vector<char> free, asleep;
+    std::vector<double> slowFor;
+    StepReport report;
+    double firstContact;
+  };
+
   Scene scene_;
   collision::TocOptions tocOptions_;
   collision::ObjectDatabase db_;
@@ -209,6 +239,9 @@ class World {
   std::vector<char> asleep_;     // per body
   std::vector<int> eventsOf_;    // per body: contact events it took part in this step (kMaxEventsPerStep)
   std::vector<char> still_;      // per body: at rest at the step's start (atRest)
+  std::vector<Eigen::AlignedBox3d> stepBounds_;  // per body: its swept bounds this step (islandsOfStep)
+  bool watchBounds_ = false;  // several islands step: each body must stay within its stepBounds_
+  bool outgrown_ = false;     // one did not (outgrewItsBounds)
   /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
   /// pairs from the step they fell asleep. Only the step-start solve is kept:
   /// an event's solve is mostly a collision impulse over what remains of the step, and
