@@ -62,21 +62,24 @@ const StepReport& World::step(double dt) {
                   dynamics::kAllowedOverlapFraction * db_.tolerance, &bouncingAtStart);
   std::vector<collision::PairResult> contactsAfter;
   std::vector<char> stepped(bodies_.size(), 0);
-  std::vector<std::vector<int>> islands = islandsOfStep(dt);
-  if (islands.size() > 1) {
-    const StepStart start{bodies_, db_.objects, free_, asleep_, slowFor_, report_, firstContact_};
-    if (!stepIslands(islands, dt, contactsAfter, stepped)) {  // one outgrew its bounds: the step again, as one island
-      bodies_ = start.bodies, db_.objects = start.objects, free_ = start.free, asleep_ = start.asleep;
-      slowFor_ = start.slowFor, report_ = start.report, firstContact_ = start.firstContact;
-      contactsAfter.clear();
-      std::fill(stepped.begin(), stepped.end(), 0);
-      islands.assign(1, {});
-      for (size_t i = 0; i < bodies_.size(); ++i)
-        if (!bodies_[i].isStatic) islands[0].push_back(static_cast<int>(i));
-      report_.islandsRedone = true;
+  std::vector<std::pair<int, int>> outgrown;  // links of bodies that outgrew their bounds into another island's
+  for (;;) {
+    const std::vector<std::vector<int>> islands = islandsOfStep(dt, outgrown);
+    if (islands.size() == 1) {
+      stepIslands(islands, dt, contactsAfter, stepped);
+      break;
     }
+    const StepStart start{bodies_, db_.objects, free_, asleep_, slowFor_, report_, firstContact_};
+    if (stepIslands(islands, dt, contactsAfter, stepped)) break;
+    // One outgrew its bounds: the step again from its start, its island and the one it
+    // can now reach as one.
+    bodies_ = start.bodies, db_.objects = start.objects, free_ = start.free, asleep_ = start.asleep;
+    slowFor_ = start.slowFor, report_ = start.report, firstContact_ = start.firstContact;
+    contactsAfter.clear();
+    std::fill(stepped.begin(), stepped.end(), 0);
+    outgrown.push_back(outgrownLink_);
+    report_.islandsRedone = true;
   }
-  if (islands.size() == 1) stepIslands(islands, dt, contactsAfter, stepped);
   for (const collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts
     if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(p);
   contacts_ = std::move(contactsAfter);
@@ -112,8 +115,9 @@ bool World::outgrewItsBounds(const std::vector<int>& island) {
     const Eigen::AlignedBox3d reach = collision::grow(collision::worldContainer(node), node.motionBound + db_.tolerance);
     if (collision::grow(stepBounds_[i], kBoundsRoundOff).contains(reach)) continue;
     for (size_t j = 0; j < bodies_.size() && !outgrown_; ++j)  // rare: only a body that sped up
-      outgrown_ = !bodies_[j].isStatic && !std::binary_search(island.begin(), island.end(), static_cast<int>(j)) &&
-                  stepBounds_[j].intersects(reach);
+      if (!bodies_[j].isStatic && !std::binary_search(island.begin(), island.end(), static_cast<int>(j)) &&
+          stepBounds_[j].intersects(reach))
+        outgrown_ = true, outgrownLink_ = {i, static_cast<int>(j)};
   }
   return outgrown_;
 }
@@ -171,7 +175,7 @@ void World::sleepIfSettled(const std::vector<int>& island, double dt) {
   }
 }
 
-std::vector<std::vector<int>> World::islandsOfStep(double duration) {
+std::vector<std::vector<int>> World::islandsOfStep(double duration, const std::vector<std::pair<int, int>>& linked) {
   std::vector<Eigen::AlignedBox3d>& bounds = stepBounds_;
   bounds.assign(bodies_.size(), Eigen::AlignedBox3d());
   std::vector<char> dynamic(bodies_.size());
@@ -185,7 +189,7 @@ std::vector<std::vector<int>> World::islandsOfStep(double duration) {
     bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]),
                                 pathMotionBound(b, sizes_[i], duration, gravity) + db_.tolerance);
   }
-  std::vector<std::pair<int, int>> touching;
+  std::vector<std::pair<int, int>> touching = linked;
   for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
   return findIslands(bounds, dynamic, touching);
 }

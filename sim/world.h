@@ -82,8 +82,9 @@ struct StepReport {
   std::vector<StepEvent> events;
   std::vector<IslandReport> islands;  // in the order they stepped
   bool eventLimitHit = false;
-  /// An island's body outgrew the swept bounds its island was found by (an event's
-  /// impulses sped it up), so the step was taken again from its start as one island.
+  /// An island's body outgrew the swept bounds its island was found by into another
+  /// island's (an event's impulses sped it up), so the step was taken again from its
+  /// start with the two as one island.
   bool islandsRedone = false;
   double penetration = 0.0;  // m, deepest overlap among the committed states
   int solverIterations = 0;  // the contact solver's sweeps, summed over the step's solves
@@ -178,8 +179,8 @@ class World {
   /// The pairs of `contacts` that bounce (bounces()), as body pairs.
   BodyPairs bouncingPairs(const std::vector<collision::PairResult>& contacts) const;
   /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
-  /// that overlap over `duration`; keeps each body's bounds in stepBounds_.
-  std::vector<std::vector<int>> islandsOfStep(double duration);
+  /// that overlap over `duration`, or by `linked`; keeps each body's bounds in stepBounds_.
+  std::vector<std::vector<int>> islandsOfStep(double duration, const std::vector<std::pair<int, int>>& linked);
   /// Steps each island that is not all asleep (waking the sleeping bodies of the others)
   /// and marks its bodies in `stepped`; false, at once, when one outgrew its bounds.
   bool stepIslands(const std::vector<std::vector<int>>& islands, double dt,
@@ -242,6 +243,7 @@ class World {
   std::vector<Eigen::AlignedBox3d> stepBounds_;  // per body: its swept bounds this step (islandsOfStep)
   bool watchBounds_ = false;  // several islands step: each body must stay within its stepBounds_
   bool outgrown_ = false;     // one did not (outgrewItsBounds)
+  std::pair<int, int> outgrownLink_;  // that body, and one of another island's it can now reach
   /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
   /// pairs from the step they fell asleep. Only the step-start solve is kept:
   /// an event's solve is mostly a collision impulse over what remains of the step, and
