@@ -4,13 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "collision/aabb.h"
-#include "collision/broadphase.h"
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
 #include "dynamics/settings.h"
 #include "dynamics/sleep.h"
-#include "sim/islands.h"
 #include "sim/warm_start.h"
 
 namespace polysim::sim {
@@ -38,6 +35,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
   asleep_.assign(bodies_.size(), 0);
   eventsOf_.assign(bodies_.size(), 0);
   still_.assign(bodies_.size(), 0);
+  startOf_.resize(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {
     paths_[i].body = &bodies_[i];
     db_.objects[i].info = &paths_[i];
@@ -62,24 +60,7 @@ const StepReport& World::step(double dt) {
                   dynamics::kAllowedOverlapFraction * db_.tolerance, &bouncingAtStart);
   std::vector<collision::PairResult> contactsAfter;
   std::vector<char> stepped(bodies_.size(), 0);
-  std::vector<std::pair<int, int>> outgrown;  // links of bodies that outgrew their bounds into another island's
-  for (;;) {
-    const std::vector<std::vector<int>> islands = islandsOfStep(dt, outgrown);
-    if (islands.size() == 1) {
-      stepIslands(islands, dt, contactsAfter, stepped);
-      break;
-    }
-    const StepStart start{bodies_, db_.objects, free_, asleep_, slowFor_, report_, firstContact_};
-    if (stepIslands(islands, dt, contactsAfter, stepped)) break;
-    // One outgrew its bounds: the step again from its start, its island and the one it
-    // can now reach as one.
-    bodies_ = start.bodies, db_.objects = start.objects, free_ = start.free, asleep_ = start.asleep;
-    slowFor_ = start.slowFor, report_ = start.report, firstContact_ = start.firstContact;
-    contactsAfter.clear();
-    std::fill(stepped.begin(), stepped.end(), 0);
-    outgrown.push_back(outgrownLink_);
-    report_.islandsRedone = true;
-  }
+  stepIslands(islandsOfStep(dt), dt, contactsAfter, stepped);
   for (const collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts
     if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(p);
   contacts_ = std::move(contactsAfter);
@@ -89,37 +70,6 @@ const StepReport& World::step(double dt) {
   time_ = sum;
   report_.time = time_;
   return report_;
-}
-
-bool World::stepIslands(const std::vector<std::vector<int>>& islands, double dt,
-                        std::vector<collision::PairResult>& contactsAfter, std::vector<char>& stepped) {
-  watchBounds_ = islands.size() > 1;
-  for (const std::vector<int>& island : islands) {
-    if (std::all_of(island.begin(), island.end(), [this](int i) { return asleep_[i] != 0; })) continue;
-    for (int i : island) {
-      if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
-      stepped[i] = 1;
-    }
-    outgrown_ = false;
-    stepIsland(island, dt, contactsAfter);
-    if (outgrown_) return false;
-    sleepIfSettled(island, dt);
-  }
-  return true;
-}
-
-bool World::outgrewItsBounds(const std::vector<int>& island) {
-  if (!watchBounds_) return false;
-  for (int i : island) {
-    const collision::ObjNode& node = db_.objects[i];
-    const Eigen::AlignedBox3d reach = collision::grow(collision::worldContainer(node), node.motionBound + db_.tolerance);
-    if (collision::grow(stepBounds_[i], kBoundsRoundOff).contains(reach)) continue;
-    for (size_t j = 0; j < bodies_.size() && !outgrown_; ++j)  // rare: only a body that sped up
-      if (!bodies_[j].isStatic && !std::binary_search(island.begin(), island.end(), static_cast<int>(j)) &&
-          stepBounds_[j].intersects(reach))
-        outgrown_ = true, outgrownLink_ = {i, static_cast<int>(j)};
-  }
-  return outgrown_;
 }
 
 void World::placeBody(int body, const Eigen::Isometry3d& pose, const Eigen::Vector3d& velocity,
@@ -173,25 +123,6 @@ void World::sleepIfSettled(const std::vector<int>& island, double dt) {
     bodies_[i].angularVelocity.setZero();
     report_.fellAsleep.push_back(i);
   }
-}
-
-std::vector<std::vector<int>> World::islandsOfStep(double duration, const std::vector<std::pair<int, int>>& linked) {
-  std::vector<Eigen::AlignedBox3d>& bounds = stepBounds_;
-  bounds.assign(bodies_.size(), Eigen::AlignedBox3d());
-  std::vector<char> dynamic(bodies_.size());
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    const dynamics::RigidBody& b = bodies_[i];
-    dynamic[i] = !b.isStatic;
-    if (b.isStatic) continue;
-    const Eigen::Vector3d gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
-    // Grown by the tolerance too: bodies that end the step within it of each other (in
-    // contact) share an island, so a sleeping body never touches one that is awake.
-    bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]),
-                                pathMotionBound(b, sizes_[i], duration, gravity) + db_.tolerance);
-  }
-  std::vector<std::pair<int, int>> touching = linked;
-  for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
-  return findIslands(bounds, dynamic, touching);
 }
 
 void World::stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter) {
