@@ -42,9 +42,9 @@ std::vector<int> levelsOf(const std::vector<Row>& rows, int bodyCount, const Eig
 
 }  // namespace
 
-SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, const Eigen::Vector3d& up) {
+void forEachLevel(const std::vector<Row>& rows, int bodyCount, const Eigen::Vector3d& up,
+                  const std::function<void(std::vector<Row>& sub, const std::vector<int>& picked)>& solveLevel) {
   const std::vector<int> level = levelsOf(rows, bodyCount, up);
-  // The rows of each level: those whose higher body is on it.
   std::vector<std::vector<int>> rowsOfLevel;
   for (size_t k = 0; k < rows.size(); ++k) {
     const Row& r = rows[k];
@@ -54,12 +54,9 @@ SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, 
     if (rowsOfLevel.size() <= top) rowsOfLevel.resize(top + 1);
     rowsOfLevel[top].push_back(static_cast<int>(k));
   }
-  SolveStats stats;
   for (size_t L = 1; L < rowsOfLevel.size(); ++L) {
     const std::vector<int>& picked = rowsOfLevel[L];
     if (picked.empty()) continue;
-    // A lower body, held fixed: a copy marked static, with its velocities as they are
-    // now (the levels below it already solved).
     std::deque<RigidBody> fixed;  // stable addresses
     std::unordered_map<int, RigidBody*> fixedOf;
     auto heldFixed = [&](int i, RigidBody* body) {
@@ -81,6 +78,13 @@ SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, 
       prepareAxes(r);
       sub.push_back(r);
     }
+    solveLevel(sub, picked);
+  }
+}
+
+SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, const Eigen::Vector3d& up) {
+  SolveStats stats;
+  forEachLevel(rows, bodyCount, up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
     const SolveStats swept = ContactSweeps(sub, bodyCount).run(sub, maxSweeps);
     stats.iterations += swept.iterations;
     stats.rowSolves += swept.rowSolves;
@@ -88,7 +92,7 @@ SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, 
       rows[picked[i]].normalImpulse = sub[i].normalImpulse;
       rows[picked[i]].frictionImpulse = sub[i].frictionImpulse;
     }
-  }
+  });
   return stats;
 }
 

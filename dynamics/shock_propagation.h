@@ -13,6 +13,7 @@
 // only: a contact links a body to the one it rests on (its normal up, against gravity,
 // by at least kSupportCosine), not to a wall it leans on.
 
+#include <functional>
 #include <vector>
 
 #include "dynamics/contact_row.h"
@@ -29,5 +30,15 @@ namespace polysim::dynamics::solver {
 /// no reaction, so momentum is not conserved and kinetic energy may rise (a level resting
 /// on a body moving up); the caller checks. Returns the sweeps' work summed over levels.
 SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, const Eigen::Vector3d& up);
+
+/// The ranking behind both passes: calls `solveLevel(sub, picked)` for each level from
+/// the ground up, where `picked` are the indices in `rows` of the level's rows (those
+/// whose higher body is on it; rows with restitution and rows of unranked bodies are in
+/// none) and `sub` their copies, each lower body replaced by a copy of itself marked
+/// static as it is at that moment (its velocities and push velocities kept, its masses
+/// infinite), axes prepared again. What `solveLevel` applies to `sub` moves only that
+/// level's bodies.
+void forEachLevel(const std::vector<Row>& rows, int bodyCount, const Eigen::Vector3d& up,
+                  const std::function<void(std::vector<Row>& sub, const std::vector<int>& picked)>& solveLevel);
 
 }  // namespace polysim::dynamics::solver

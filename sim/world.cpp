@@ -4,13 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "collision/aabb.h"
-#include "collision/broadphase.h"
 #include "collision/intersection.h"
 #include "dynamics/integrator.h"
 #include "dynamics/settings.h"
 #include "dynamics/sleep.h"
-#include "sim/islands.h"
 #include "sim/warm_start.h"
 
 namespace polysim::sim {
@@ -38,6 +35,7 @@ World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), d
   asleep_.assign(bodies_.size(), 0);
   eventsOf_.assign(bodies_.size(), 0);
   still_.assign(bodies_.size(), 0);
+  startOf_.resize(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {
     paths_[i].body = &bodies_[i];
     db_.objects[i].info = &paths_[i];
@@ -62,15 +60,7 @@ const StepReport& World::step(double dt) {
                   dynamics::kAllowedOverlapFraction * db_.tolerance, &bouncingAtStart);
   std::vector<collision::PairResult> contactsAfter;
   std::vector<char> stepped(bodies_.size(), 0);
-  for (const std::vector<int>& island : islandsOfStep(dt)) {
-    if (std::all_of(island.begin(), island.end(), [this](int i) { return asleep_[i] != 0; })) continue;
-    for (int i : island) {
-      if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
-      stepped[i] = 1;
-    }
-    stepIsland(island, dt, contactsAfter);
-    sleepIfSettled(island, dt);
-  }
+  stepIslands(islandsOfStep(dt), dt, contactsAfter, stepped);
   for (const collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts
     if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(p);
   contacts_ = std::move(contactsAfter);
@@ -135,24 +125,6 @@ void World::sleepIfSettled(const std::vector<int>& island, double dt) {
   }
 }
 
-std::vector<std::vector<int>> World::islandsOfStep(double duration) const {
-  std::vector<Eigen::AlignedBox3d> bounds(bodies_.size());
-  std::vector<char> dynamic(bodies_.size());
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    const dynamics::RigidBody& b = bodies_[i];
-    dynamic[i] = !b.isStatic;
-    if (b.isStatic) continue;
-    const Eigen::Vector3d gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
-    // Grown by the tolerance too: bodies that end the step within it of each other (in
-    // contact) share an island, so a sleeping body never touches one that is awake.
-    bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]),
-                                pathMotionBound(b, sizes_[i], duration, gravity) + db_.tolerance);
-  }
-  std::vector<std::pair<int, int>> touching;
-  for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
-  return findIslands(bounds, dynamic, touching);
-}
-
 void World::stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter) {
   collision::ObjectDatabase& db = databaseFor(island);
   std::vector<collision::PairResult> contacts;  // the island's, body indices
@@ -163,6 +135,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
   report_.islands.push_back({static_cast<int>(island.size()), 0});
   for (int& events = report_.islands.back().events; remaining > 0;) {
     predictMotion(island, remaining);                        // each body's path over the rest of the step
+    if (outgrewItsBounds(island)) return;                    // its bodies may reach another island's now
     collision::TocResult toc = detectCollisions(db);         // back up to the island's first contact, if any
     const double elapsed = toc.time * remaining;
     commitPoses(island, elapsed);                            // its bodies move to that state

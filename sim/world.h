@@ -54,6 +54,11 @@ inline constexpr double kStalledGapFraction = 0.5;
 /// test, which their contacts' gaps follow, and speculate further anyway.
 inline constexpr double kWideBandFactor = 2.0;
 
+/// Round-off allowed (m) when a body's reach over the rest of a step is checked against
+/// the swept bounds its island was found by (World::outgrewItsBounds): the two are the
+/// same sum taken in another order when nothing sped the body up.
+inline constexpr double kBoundsRoundOff = 1e-9;
+
 /// Pairs of body indices, the smaller first.
 using BodyPairs = std::set<std::pair<int, int>>;
 inline std::pair<int, int> bodyPair(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
@@ -77,6 +82,10 @@ struct StepReport {
   std::vector<StepEvent> events;
   std::vector<IslandReport> islands;  // in the order they stepped
   bool eventLimitHit = false;
+  /// Times an island's body outgrew the swept bounds its island was found by into another
+  /// island's (an event's impulses sped it up), so that the two islands were taken back
+  /// to the step's start and stepped again as one.
+  int islandsRedone = 0;
   double penetration = 0.0;  // m, deepest overlap among the committed states
   int solverIterations = 0;  // the contact solver's sweeps, summed over the step's solves
   int shockSweeps = 0;       // and shock propagation's (dynamics/shock_propagation.h)
@@ -170,11 +179,30 @@ class World {
   /// The pairs of `contacts` that bounce (bounces()), as body pairs.
   BodyPairs bouncingPairs(const std::vector<collision::PairResult>& contacts) const;
   /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
-  /// that overlap over `duration`.
-  std::vector<std::vector<int>> islandsOfStep(double duration) const;
+  /// that overlap over `duration`; keeps each body's bounds in stepBounds_.
+  std::vector<std::vector<int>> islandsOfStep(double duration);
+  /// Steps each island that is not all asleep (waking the sleeping bodies of the others)
+  /// and marks its bodies in `stepped`. When a body outgrows its island's bounds into
+  /// another island's (outgrewItsBounds), both islands are taken back to the step's start
+  /// (takeBack) and step again as one; the others keep what they did.
+  void stepIslands(std::vector<std::vector<int>> islands, double dt, std::vector<collision::PairResult>& contactsAfter,
+                   std::vector<char>& stepped);
+  /// True (and outgrown_ set) when, with several islands, a body of `island` may now move
+  /// beyond the swept bounds its island was found by (stepBounds_) into those of a body of
+  /// another island: an event's impulses sped it up, and over the rest of the step it may
+  /// meet that body, which its island's database does not hold (a refilled pen: a box
+  /// kicked into a resting one of another island, found interpenetrating at the next
+  /// step's start).
+  bool outgrewItsBounds(const std::vector<int>& island);
   /// Steps one island through its contact events over `dt`; appends its contacts at the
   /// end of the step to `contactsAfter`.
   void stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter);
+  /// Undoes an island's share of the step: its bodies back to their states before it
+  /// stepped (startOf_), its contacts, events, sleeps and wakes out of `contactsAfter` and
+  /// report_, and its entry `reportEntry` of report_.islands marked to be dropped. The
+  /// report's deepest overlap, sweep counts and event limit keep what the undone share
+  /// did (work done, and a bound that held for states then committed).
+  void takeBack(const std::vector<int>& island, int reportEntry, std::vector<collision::PairResult>& contactsAfter);
   /// The database collisionDetect() is given for an island: the world's own when the
   /// island holds every dynamic body, else islandDb_ filled with the island's bodies and
   /// every static one (islandIds_ maps its objects to body indices).
@@ -193,6 +221,14 @@ class World {
   /// The body moves this step: dynamic and not asleep.
   bool awake(int body) const { return !bodies_[body].isStatic && !asleep_[body]; }
 
+  /// What an island's step changes in a body, kept from before it (stepIslands).
+  struct BodyStart {
+    dynamics::RigidBody body;
+    collision::ObjNode object;
+    char free = 0, asleep = 0;
+    double slowFor = 0.0;
+  };
+
   Scene scene_;
   collision::TocOptions tocOptions_;
   collision::ObjectDatabase db_;
@@ -209,6 +245,11 @@ class World {
   std::vector<char> asleep_;     // per body
   std::vector<int> eventsOf_;    // per body: contact events it took part in this step (kMaxEventsPerStep)
   std::vector<char> still_;      // per body: at rest at the step's start (atRest)
+  std::vector<Eigen::AlignedBox3d> stepBounds_;  // per body: its swept bounds this step (islandsOfStep)
+  bool watchBounds_ = false;  // several islands step: each body must stay within its stepBounds_
+  bool outgrown_ = false;     // one did not (outgrewItsBounds)
+  std::pair<int, int> outgrownLink_;  // that body, and one of another island's it can now reach
+  std::vector<BodyStart> startOf_;    // per body: its state before its island stepped this step
   /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
   /// pairs from the step they fell asleep. Only the step-start solve is kept:
   /// an event's solve is mostly a collision impulse over what remains of the step, and

@@ -118,6 +118,45 @@ TEST(SpeculativeContacts, TouchingPairsKeepTheDetectorsContactsTheWidenedOnesMis
   EXPECT_EQ(static_cast<int>(found[0].contacts.size()), widened + kept);
 }
 
+// A detector's contact the widened ones share a normal with is still kept when they put
+// the pair's touch elsewhere across that normal: where two edges lie nearly parallel the
+// widened test placed their crossing 1.8 cm along them from the detector's, and the
+// solver held that point apart while the detector's closed (pile of 1000, seed 6: every
+// event of a step stalled at once). Here box 1 stands turned by 45 degrees, its vertical
+// edge 1 cm from box 0's face: the widened contact is that edge's line, x = 0.5, y = 0.
+TEST(SpeculativeContacts, TouchingPairsKeepTheDetectorsContactsTheWidenedOnesPutElsewhere) {
+  collision::ObjectDatabase db;
+  const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(V3(1, 1, 1)));
+  db.add("box", box, Eigen::Isometry3d::Identity(), false);
+  Eigen::Isometry3d turned(Eigen::AngleAxisd(M_PI / 4, V3::UnitZ()));
+  turned.translation() = V3(0.51 + std::sqrt(0.5), 0, 0);
+  db.add("box", box, turned, false);
+  collision::IntersectionWorkspace ws;
+  collision::Contact onTheLine, offTheLine;
+  onTheLine.normal = offTheLine.normal = V3::UnitX();  // from body 10 towards 11, as given (a = 11)
+  onTheLine.addPoint(V3(0.5, 0.0, 0.2), 0.0);
+  offTheLine.addPoint(V3(0.5, 0.3, 0.0), -5e-5);
+  PairResult touching;
+  touching.a = 11, touching.b = 10, touching.status = Status::Contact, touching.contacts = {onTheLine, offTheLine};
+  const std::vector<PairResult> found = withSpeculativeContacts(db, ws, kSpeculativeReach, {10, 11}, {touching}, allMoving, everyPair);
+  ASSERT_EQ(found.size(), 1u);
+  ASSERT_EQ(found[0].a, 10);
+  int widened = 0, kept = 0;
+  for (const collision::Contact& c : found[0].contacts) {
+    ASSERT_LT((c.normal + V3::UnitX()).norm(), 1e-9) << "every contact on the pair's one normal";
+    if (std::abs(c.separation - 0.01) < 1e-9) {
+      ++widened;
+      for (const V3& p : c.points) EXPECT_NEAR(p.y(), 0.0, 1e-9) << "the widened contact is box 1's edge";
+    } else {
+      ++kept;
+      EXPECT_EQ(c.separation, -5e-5) << "the point 0.3 m off the line is kept; the one on it is covered";
+      EXPECT_EQ(c.points, offTheLine.points);
+    }
+  }
+  EXPECT_GE(widened, 1);
+  EXPECT_EQ(kept, 1);
+}
+
 // Events and outcome of a unit box released at rest on one corner or edge on the floor,
 // tilted by `tilt` (rad) about the horizontal axis at `heading` (rad), over 3 s at 60 Hz.
 struct Tipping {
