@@ -2,12 +2,13 @@
 // What an event's solve must cover (World::stepIsland). The contacts of a step are solved
 // at its start; each contact event inside the step solves again. Contacts fall into
 // groups linked through dynamic bodies (as the solver's sweeps group them): a group none
-// of whose bodies the event touched is exactly as the last solve left it, and solving it
-// again only repeats that solve's sweeps. A landing pile of 1000 boxes has about a
-// hundred events a step in one island, each solve holding some 700 contact points of
-// which the event's group held 5%; every event re-swept the rest, and unconverged groups
-// (most of a settling pile's) paid their whole sweep limit and shock propagation again
-// each time.
+// of whose bodies the event touched is as the last solve left it, and solving it again
+// only repeats that solve's sweeps. A landing pile of 1000 boxes (seed 1, first 1.5 s)
+// has 6,733 event solves of 660 contact points on average, of which the event's own
+// group held 5%; every event re-swept the rest, and each unconverged group paid its
+// sweep limit and shock propagation again: 116 M points solved, against 37 M with only
+// the reached groups. A settling group is still swept at every event: sweeps are what
+// rest it (dynamics/settings.h, kSettlingSolverSweeps).
 
 #include <cstdint>
 #include <unordered_map>
@@ -33,8 +34,11 @@ class EventReach {
   /// The pairs of `contacts` (body indices) in a group that holds a body disturbed since
   /// its last solve: one of a pair in `crossing` (the event's cause), one whose velocity
   /// or spin is not, bit for bit, what its last solve in this step left (gravity given on
-  /// landing; never solved in this step), or one of a pair no solve of this step held (a
-  /// contact new to the band). The others are left out; their order is kept.
+  /// landing; never solved in this step), or one of a pair that no solve of this step held
+  /// with as many contacts (new to the band, or a point that became a line as a box
+  /// turned); and the pairs of a settling group: every body slower than kSettlingSpeed
+  /// (m/s, its spin times its size `sizes` (m) counted), not every one at rest after its
+  /// last solve. The others are left out; their order is kept.
   std::vector<collision::PairResult> reached(const std::vector<collision::PairResult>& contacts,
                                              const std::vector<std::pair<int, int>>& crossing,
                                              const std::vector<dynamics::RigidBody>& bodies,
