@@ -12,7 +12,8 @@
 
 namespace polysim::sim {
 
-World::World(const Scene& scene, collision::TocMethod method) : scene_(scene), db_(buildObjectDatabase(scene)) {
+World::World(const Scene& scene, collision::TocMethod method)
+    : scene_(scene), db_(buildObjectDatabase(scene)), reach_(static_cast<int>(scene.bodies.size())) {
   checkInitialState(scene_);
   tocOptions_.method = method;
   workspace_.reuse.enable(scene_.contact.reuseContacts);
@@ -48,6 +49,7 @@ const StepReport& World::step(double dt) {
   StepReport next;
   next.step = report_.step + 1;
   report_ = std::move(next);
+  reach_.newStep();
   for (size_t i = 0; i < bodies_.size(); ++i) free_[i] = !asleep_[i];  // a sleeping body rests: no gravity, no path
   for (dynamics::RigidBody& b : bodies_) b.pushVelocity.setZero(), b.pushAngularVelocity.setZero();  // set by this step's solves
   for (size_t i = 0; i < bodies_.size(); ++i) still_[i] = atRest(static_cast<int>(i));
@@ -146,6 +148,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     toc.pairs = contacts;
     ++events;
     const bool bodyAtBound = countEventOfBodies(toc.crossing);
+    const std::vector<std::pair<int, int>> crossing = toc.crossing;
     report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
     if (bodyAtBound) {                                       // the island's clock stops (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
@@ -163,10 +166,15 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     // judged after it, a bounced box was taken for landed and given the rest of the step's
     // gravity at once (at dt 1 s, 9 m/s down, which it then bounced off: +12 J a step).
     const BodyPairs bouncing = bouncingPairs(contacts);
-    resolveContacts(solved, remaining, false, allowedOverlap);    // impulses at the contact
+    // Only the groups of contacts the event disturbed are solved again (event_reach.h); a
+    // stalled event pushes all of its contacts apart.
+    const auto reached = [&](const std::vector<collision::PairResult>& pairs) {
+      return elapsed > 0.0 ? reach_.reached(pairs, crossing, bodies_, sizes_) : pairs;
+    };
+    resolveContacts(reached(solved), remaining, false, allowedOverlap);  // impulses at the contact
     if (supportTouchingBodies(contacts, bouncing, remaining)) {   // bodies that landed take the rest of the step's gravity,
       if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),
-      resolveContacts(solved, remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
+      resolveContacts(reached(solved), remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
     }
   }
   contactsAfter.insert(contactsAfter.end(), contacts.begin(), contacts.end());
@@ -267,6 +275,7 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
       dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps, up);
   report_.solverIterations += solved.iterations;
   report_.shockSweeps += solved.shockSweeps;
+  reach_.noteSolved(contacts, bodies_);
   if (!stepStart) return;
   for (dynamics::ContactPoint& p : points) {
     p.normalImpulse /= horizon;

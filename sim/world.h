@@ -13,6 +13,7 @@
 #include "dynamics/rigid_body.h"
 #include "sim/body_path.h"
 #include "sim/contact_points.h"
+#include "sim/event_reach.h"
 #include "sim/scene.h"
 
 namespace polysim::sim {
@@ -256,6 +257,7 @@ class World {
   /// divided by that short horizon it would warm-start the next step with many times the
   /// impulse, for the sweeps to take back.
   std::vector<dynamics::ContactPoint> lastSolved_;
+  EventReach reach_;  // what each solve of this step covered, for an event's solve to cover less
   double time_ = 0.0;
   double timeCompensation_ = 0.0;  // Kahan summation: 14400 steps of 1/240 add up to 60 exactly
   double firstContact_ = -1.0;
