@@ -53,18 +53,20 @@ std::vector<collision::PairResult> EventReach::reached(const std::vector<collisi
   }
   // A settling group (every body slower than kSettlingSpeed, not every one at rest after
   // its last solve) is swept again too: its sweeps carry it to rest (kSettlingSolverSweeps).
-  std::unordered_map<int, std::pair<bool, bool>> fastOrRested;  // root -> (some body fast, all rested)
+  struct Motion {
+    bool someFast = false, allRested = true;
+  };
+  std::unordered_map<int, Motion> motionOf;  // per group root
   for (const collision::PairResult& p : contacts)
     for (int i : {p.a, p.b}) {
       const dynamics::RigidBody& b = bodies[i];
       if (b.isStatic) continue;
-      auto [at, fresh] = fastOrRested.try_emplace(groups.root(i), false, true);
-      const double speed = b.velocity.norm() + b.angularVelocity.norm() * sizes[i];
-      at->second.first = at->second.first || speed >= dynamics::kSettlingSpeed;
-      at->second.second = at->second.second && b.restedAfterLastSolve;
+      Motion& m = motionOf[groups.root(i)];
+      m.someFast = m.someFast || b.velocity.norm() + b.angularVelocity.norm() * sizes[i] >= dynamics::kSettlingSpeed;
+      m.allRested = m.allRested && b.restedAfterLastSolve;
     }
-  for (const auto& [root, state] : fastOrRested)
-    if (!state.first && !state.second) reachedRoots.insert(root);
+  for (const auto& [root, m] : motionOf)
+    if (!m.someFast && !m.allRested) reachedRoots.insert(root);
   std::vector<collision::PairResult> kept;
   for (const collision::PairResult& p : contacts)
     if (reachedRoots.count(groups.root(bodies[p.a].isStatic ? p.b : p.a))) kept.push_back(p);
