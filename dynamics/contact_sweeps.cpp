@@ -8,6 +8,7 @@
 
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
+#include "dynamics/settling_progress.h"
 
 namespace polysim::dynamics::solver {
 
@@ -166,7 +167,8 @@ bool rested(const std::vector<Row>& rows, const std::vector<std::vector<int>>& b
 
 // Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
 // its limit is reached: kMaxSolverIterations, or maxSweeps if fewer or if the group is
-// settling there and did not rest after its last solve (settings.h). Each sweep solves
+// settling there and did not rest after its last solve (settings.h); a settling group's
+// sweeps also stop once they stall (SettlingProgress). Each sweep solves
 // each block's friction rows, then its normal impulses. Sweeps run in the given order
 // (bottom-up: the first carries a stack's weight down in one pass), then backwards, and so
 // on (symmetric Gauss-Seidel): a load that must shift across a tall structure travels both
@@ -175,10 +177,12 @@ bool rested(const std::vector<Row>& rows, const std::vector<std::vector<int>>& b
 SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
                       const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
   SolveStats stats;
+  SettlingProgress progress;
   for (int limit = std::min(maxSweeps, kMaxSolverIterations);;) {
     if (stats.iterations == limit && limit < maxSweeps && settling(rows, blocks, group) && !rested(rows, blocks, group))
       limit = maxSweeps;
     if (stats.iterations >= limit) break;
+    if (limit > kMaxSolverIterations && progress.stalled(stats.iterations)) break;
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
     const bool backwards = stats.iterations % 2 == 0;  // the first sweep is forwards
@@ -192,6 +196,7 @@ SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>
       stats.converged = true;
       break;
     }
+    progress.note(largestChange);
   }
   return stats;
 }

@@ -33,7 +33,7 @@ class ContactSweeps {
   /// Sweeps each group until no impulse changes by kSolverVelocityTolerance (m/s over the
   /// lighter body's mass) or its limit is reached: kMaxSolverIterations, or `maxSweeps`
   /// if fewer or if at that point no contact moves faster than kSettlingSpeed (a settling
-  /// group, settings.h). Each sweep solves each block's friction rows, then its normal
+  /// group, settings.h), whose sweeps also stop once they stall (kSettlingStallWindow). Each sweep solves each block's friction rows, then its normal
   /// impulses. Sweeps run in the rows' order (bottom-up: the first carries a stack's
   /// weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel). `iterations` is the most sweeps any group took; `converged`, whether
   /// every group stopped on the tolerance.
