@@ -51,16 +51,17 @@ inline constexpr double kSettlingSpeed = 0.05;
 /// the kSettlingStallWindow sweeps just made have not cut the smallest change a sweep
 /// made so far (its largest impulse change, m/s) by kSettlingLeastGain of itself. What
 /// is left goes to shock propagation, as at the limit. Traced on the tilted pile of 125
-/// (seed 1), 513 of its 518 settling solves ran the whole 1000 sweeps unconverged, and
-/// some of them repeated one change to the last digit for 900 sweeps (a cycle, not a
-/// convergence); on the first 3 s of the pile of 1000, 3,224 settling solves made 65% of
-/// all sweeps, two thirds of which this rule stops. Side by side, one run each: the pile
-/// of 125 (20 s) 1.65 against 1.97 s of CPU, at rest by 2.03 against 2.0 s; piles of
-/// 1000 (20 s) seed 1 55.4 against 56.8 s, seed 2 46.8 against 54.9 s, all at rest and
-/// asleep, none gaining energy; the towers family (the pile's middle nine columns,
-/// seeds 1 to 24, and the corner's, 1 to 8, sleeping off, 8 s) all at rest, the last by
-/// 6.87 s, 86 against 113 s of CPU. A window of 100 asking for half (0.5) cost the pile
-/// of 1000 more: it settled later (162 against 63 boxes moving at 3 s).
+/// (seed 1), 513 of its 518 settling solves ran the whole 1000 sweeps unconverged, some
+/// repeating one change to the last digit for 900 sweeps (a cycle, not a convergence);
+/// in the first 3 s of the pile of 1000, settling sweeps were 65% of all sweeps and this
+/// rule would stop two thirds of them. Side by side, one run each: the pile of 125 (20 s)
+/// 1.97 against 2.41 s of CPU, at rest by 1.85 against 2.0 s; piles of 1000 (20 s, seeds
+/// 1 to 4) 197 against 223 s, every box at rest and asleep, by 4.9, 4.2, 5.4 and 5.4 s
+/// against 4.0, 3.9, 4.1 and 4.3 s, no energy gained; the towers family (the pile's middle
+/// nine columns, seeds 1 to 44, and the corner's, 1 to 8; sleeping off, 8 s) 153 against
+/// 187 s, all at rest but seed 28's middle, which topples late in both. A window asking
+/// for half (0.5) left the pile of 1000 settling later still (162 against 63 boxes moving
+/// at 3 s).
 inline constexpr int kSettlingStallWindow = 100;
 inline constexpr double kSettlingLeastGain = 0.1;
 
