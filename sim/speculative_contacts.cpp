@@ -67,10 +67,11 @@ void keepContactsMissed(const collision::PairResult& detected, collision::PairRe
 
 }  // namespace
 
-std::vector<collision::PairResult> withSpeculativeContacts(
-    const collision::ObjectDatabase& db, collision::IntersectionWorkspace& workspace, double reach,
-    const std::vector<int>& bodyOf, const std::vector<collision::PairResult>& touching,
-    const std::function<SpeculativeRole(int)>& roleOf, const std::function<bool(const collision::PairResult&)>& speculate) {
+std::vector<collision::PairResult> speculativePairs(const collision::ObjectDatabase& db,
+                                                    collision::IntersectionWorkspace& workspace, double reach,
+                                                    const std::vector<int>& bodyOf,
+                                                    const std::function<SpeculativeRole(int)>& roleOf,
+                                                    const std::vector<char>* onlyOf) {
   // The database of the objects tested, still ones marked static: the test skips pairs
   // of static objects, so bodies at rest cost nothing against each other.
   collision::ObjectDatabase near;
@@ -85,17 +86,33 @@ std::vector<collision::PairResult> withSpeculativeContacts(
     near.objects.back().isStatic = near.objects.back().isStatic || role == SpeculativeRole::Still;
     bodyOfNear.push_back(bodyOf.empty() ? k : bodyOf[k]);
   }
-  if (!anyMoving) return touching;
-  collision::IntersectionResult found = collision::test4Intersection(near, workspace);
+  if (!anyMoving) return {};
+  collision::IntersectionOptions options;
+  std::vector<std::pair<int, int>> among;  // the pairs with a marked body the whole test would try
+  if (onlyOf) {
+    const int n = static_cast<int>(near.objects.size());
+    for (int i = 0; i < n; ++i)
+      if ((*onlyOf)[bodyOfNear[i]])
+        for (int j = 0; j < n; ++j)
+          if (j != i && !(near.objects[i].isStatic && near.objects[j].isStatic)) among.emplace_back(std::min(i, j), std::max(i, j));
+    std::sort(among.begin(), among.end());
+    among.erase(std::unique(among.begin(), among.end()), among.end());
+    options.onlyPairs = &among;
+  }
+  std::vector<collision::PairResult> found = collision::test4Intersection(near, workspace, options).pairs;
+  for (collision::PairResult& p : found) p.a = bodyOfNear[p.a], p.b = bodyOfNear[p.b];
+  return found;
+}
 
+std::vector<collision::PairResult> mergeSpeculative(const std::vector<collision::PairResult>& found,
+                                                    const std::vector<collision::PairResult>& touching, double tolerance,
+                                                    const std::function<bool(const collision::PairResult&)>& speculate) {
   // Nothing interpenetrates within the tolerance, so nothing should within the reach; a
   // pair classed so anyway (judged by the wider band) keeps its contacts.
-  std::map<std::pair<int, int>, collision::PairResult*> widened;
+  std::map<std::pair<int, int>, const collision::PairResult*> widened;
   const auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
-  for (collision::PairResult& p : found.pairs) {
-    p.a = bodyOfNear[p.a], p.b = bodyOfNear[p.b];
+  for (const collision::PairResult& p : found)
     if (p.status == collision::Status::Contact && speculate(p)) widened.emplace(key(p.a, p.b), &p);
-  }
   std::vector<collision::PairResult> contacts;
   contacts.reserve(widened.size() + touching.size());
   for (const collision::PairResult& p : touching) {
@@ -104,12 +121,19 @@ std::vector<collision::PairResult> withSpeculativeContacts(
       contacts.push_back(p);
       continue;
     }
-    contacts.push_back(std::move(*at->second));
+    contacts.push_back(*at->second);
     widened.erase(at);
-    keepContactsMissed(p, contacts.back(), db.tolerance);
+    keepContactsMissed(p, contacts.back(), tolerance);
   }
-  for (const auto& [pair, p] : widened) contacts.push_back(std::move(*p));  // the new ones
+  for (const auto& [pair, p] : widened) contacts.push_back(*p);  // the new ones
   return contacts;
+}
+
+std::vector<collision::PairResult> withSpeculativeContacts(
+    const collision::ObjectDatabase& db, collision::IntersectionWorkspace& workspace, double reach,
+    const std::vector<int>& bodyOf, const std::vector<collision::PairResult>& touching,
+    const std::function<SpeculativeRole(int)>& roleOf, const std::function<bool(const collision::PairResult&)>& speculate) {
+  return mergeSpeculative(speculativePairs(db, workspace, reach, bodyOf, roleOf), touching, db.tolerance, speculate);
 }
 
 }  // namespace polysim::sim

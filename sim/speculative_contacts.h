@@ -31,15 +31,30 @@ enum class SpeculativeRole {
   Moving,  // tested against every object not left
 };
 
-/// The solver's contacts for a step or for what remains of it after an event: tests the
-/// objects of `db` at their current poses with the tolerance widened to `reach` (m), as
-/// `roleOf(object index)` says, and every pair within it that `speculate` accepts gets
-/// the contacts found so (those within the tolerance as before, plus the features that
-/// may touch within the step, each with its own gap). `touching` (the pairs in contact
-/// within the tolerance, body indices) are all returned: with the widened contacts where
-/// found and accepted (plus each of their own contacts whose normal no widened contact
-/// shares: the detector's verdict is the one a step keeps), else as they are. `bodyOf`
-/// maps the database's objects to body indices (empty: the same).
+/// The pairs of `db`'s objects found within `reach` (m) of each other at their current
+/// poses, as `roleOf(object index)` says, with the contacts the test found in that band
+/// (body indices, by `bodyOf`; empty: the same). `onlyOf`, when given (per body): only
+/// the pairs with a body it marks are tested, each exactly as the whole test would.
+std::vector<collision::PairResult> speculativePairs(const collision::ObjectDatabase& db,
+                                                    collision::IntersectionWorkspace& workspace, double reach,
+                                                    const std::vector<int>& bodyOf,
+                                                    const std::function<SpeculativeRole(int)>& roleOf,
+                                                    const std::vector<char>* onlyOf = nullptr);
+
+/// The solver's contacts from `found` (speculativePairs(), body indices) and `touching`
+/// (the pairs in contact within `tolerance` (m), body indices): every pair of `found` in
+/// contact that `speculate` accepts gets the contacts found so (those within the
+/// tolerance as before, plus the features that may touch within the step, each with its
+/// own gap). `touching` are all returned: with the widened contacts where found and
+/// accepted (plus each of their own contacts whose normal no widened contact shares: the
+/// detector's verdict is the one a step keeps), else as they are.
+std::vector<collision::PairResult> mergeSpeculative(const std::vector<collision::PairResult>& found,
+                                                    const std::vector<collision::PairResult>& touching, double tolerance,
+                                                    const std::function<bool(const collision::PairResult&)>& speculate);
+
+/// The solver's contacts for a step or for what remains of it after an event:
+/// mergeSpeculative() of speculativePairs() (`reach`, `roleOf`) and `touching`, with the
+/// database's tolerance.
 std::vector<collision::PairResult> withSpeculativeContacts(
     const collision::ObjectDatabase& db, collision::IntersectionWorkspace& workspace, double reach,
     const std::vector<int>& bodyOf, const std::vector<collision::PairResult>& touching,

@@ -173,7 +173,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     };
     resolveContacts(reached(solved), remaining, false, allowedOverlap);  // impulses at the contact
     if (supportTouchingBodies(contacts, bouncing, remaining)) {   // bodies that landed take the rest of the step's gravity,
-      if (elapsed > 0.0) solved = solverContacts(db, islandIds_, contacts);  // and may now speculate (settled),
+      if (elapsed > 0.0) solved = solverContactsOnceLanded(db, islandIds_, contacts);  // and may now speculate (settled),
       resolveContacts(reached(solved), remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
     }
   }

@@ -16,23 +16,41 @@ std::vector<collision::PairResult> World::solverContacts(const collision::Object
   return withWideBand(db, bodyOf, speculativeContacts(db, bodyOf, touching));
 }
 
+std::vector<collision::PairResult> World::solverContactsOnceLanded(const collision::ObjectDatabase& db,
+                                                                   const std::vector<int>& bodyOf,
+                                                                   const std::vector<collision::PairResult>& touching) {
+  return withWideBand(db, bodyOf, speculativeContacts(db, bodyOf, touching, true));
+}
+
 std::vector<collision::PairResult> World::speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                              const std::vector<collision::PairResult>& touching) {
-  if (scene_.contact.speculativeReach <= 0.0) return touching;
+                                                              const std::vector<collision::PairResult>& touching,
+                                                              bool onceLanded) {
+  const double reach = scene_.contact.speculativeReach;
+  if (reach <= 0.0) return touching;
   // Bodies flying free keep their exact parabolas and impacts (backed up to just
   // contact), and so do pairs that bounce; a sleeping body is moved by no solve. Only
   // convex bodies: in a band as wide as the reach, the creases of a cup in a cup are
   // judged against walls that do not touch (a frictionless column of cups gained 0.09 J
   // and slid 9 mm in 4 s). Bodies at rest at the step's start are tested only against
   // moving ones, so a resting stack pays nothing.
-  const auto roleOf = [&](int k) {
-    const int i = bodyOf.empty() ? k : bodyOf[k];
+  const auto roleOfBody = [&](int i) {
     if (!db_.objects[i].mesh->convex() || (!bodies_[i].isStatic && (asleep_[i] || free_[i])))
       return SpeculativeRole::Left;
     return bodies_[i].isStatic || still_[i] ? SpeculativeRole::Still : SpeculativeRole::Moving;
   };
-  return withSpeculativeContacts(db, workspace_, scene_.contact.speculativeReach, bodyOf, touching, roleOf,
-                                 [this](const collision::PairResult& p) { return !bounces(p); });
+  const auto bodyAt = [&](int k) { return bodyOf.empty() ? k : bodyOf[k]; };
+  const auto speculate = [this](const collision::PairResult& p) { return !bounces(p); };
+  const auto roleOf = [&](int k) { return roleOfBody(bodyAt(k)); };
+  if (!onceLanded) {
+    speculativeFound_ = speculativePairs(db, workspace_, reach, bodyOf, roleOf);
+  } else {  // the poses, and every other body's role, are the last test's: only the landed bodies' pairs are new
+    std::vector<char> landed(bodies_.size(), 0);
+    for (size_t i = 0; i < bodies_.size(); ++i) landed[i] = speculatedFree_[i] && !free_[i];
+    for (collision::PairResult& p : speculativePairs(db, workspace_, reach, bodyOf, roleOf, &landed))
+      speculativeFound_.push_back(std::move(p));
+  }
+  speculatedFree_ = free_;
+  return mergeSpeculative(speculativeFound_, touching, db.tolerance, speculate);
 }
 
 std::vector<collision::PairResult> World::withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
