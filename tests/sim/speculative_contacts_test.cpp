@@ -217,5 +217,60 @@ TEST(SpeculativeContacts, ATippingBoxBacksUpLessOftenAndRestsFlat) {
   EXPECT_LE(2 * speculating, backingUp) << speculating << " events with speculative contacts, " << backingUp << " without";
 }
 
+// A box of random size dropped from 0.3 to 1.5 m with a random tilt small enough that,
+// when its lowest corner touches, its whole bottom face is within half the reach. The
+// landing solve, once it has found the box landed, tests the box's pairs again and gives
+// the solver that face: the box lands flat in the one event of its first touch, instead
+// of swinging down onto its face and backing up a second time. Half the trials land on
+// a resting box of random height, half on the floor.
+TEST(SpeculativeContacts, ABoxDroppedNearlyFlatLandsInOneEvent) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(random); };
+  for (int trial = 0; trial < 12; ++trial) {
+    Scene scene = test::scene("tilted_drop", false);
+    scene.dt = 1.0 / 60;
+    BodySpec& box = scene.bodies[1];
+    box.boxSize = V3(between(0.4, 1.2), between(0.4, 1.2), between(0.4, 1.2));
+    box.mesh = collision::makeBox(box.boxSize);
+    const double tilt = between(0.1, 1.0) * 0.5 * kSpeculativeReach / box.boxSize.head<2>().norm();
+    const double heading = between(0.0, 2 * M_PI);
+    box.orientation = Eigen::AngleAxisd(tilt, V3(std::cos(heading), std::sin(heading), 0));
+    double floorTop = 0.0;
+    if (trial % 2 == 1) {  // a resting box under it, wider than the one dropped
+      BodySpec base = box;
+      base.name = "base";
+      base.boxSize = V3(2, 2, between(0.3, 1.0));
+      base.mesh = collision::makeBox(base.boxSize);
+      base.orientation = Eigen::Quaterniond::Identity();
+      base.position = V3(0, 0, base.boxSize.z() / 2);
+      base.mass = 5.0;
+      floorTop = base.boxSize.z();
+      box.position = V3(between(-0.3, 0.3), between(-0.3, 0.3), floorTop + box.boxSize.z() / 2 + between(0.3, 1.5));
+      scene.bodies.push_back(base);  // `box` no longer refers to the scene's body from here
+    } else {
+      box.position = V3(between(-0.3, 0.3), between(-0.3, 0.3), box.boxSize.z() / 2 + between(0.3, 1.5));
+    }
+    const BodySpec& dropped = scene.bodies[1];
+    SCOPED_TRACE("trial " + std::to_string(trial) + ": tilt " + std::to_string(tilt) + " rad, size " +
+                 std::to_string(dropped.boxSize.x()) + " x " + std::to_string(dropped.boxSize.y()));
+    World w(scene);
+    const double start = w.energy();
+    int events = 0, stepsWithEvents = 0;
+    double deepest = 0.0, rise = 0.0;
+    test::runFor(w, 2.0, [&](const StepReport& r) {
+      events += static_cast<int>(r.events.size());
+      stepsWithEvents += !r.events.empty();
+      deepest = std::max(deepest, r.penetration);
+      rise = std::max(rise, w.energy() - start);
+    });
+    EXPECT_EQ(events, 1) << "in " << stepsWithEvents << " steps";
+    EXPECT_LE(deepest, 1e-4);
+    EXPECT_LE(rise, 1e-9);
+    EXPECT_TRUE(w.atRest(1));
+    EXPECT_NEAR(w.bodies()[1].position.z(), floorTop + dropped.boxSize.z() / 2, 1e-4);
+  }
+}
+
 }  // namespace
 }  // namespace polysim::sim
