@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,30 @@ inline std::string tempPath(const std::string& file) {
     if (c == '/') c = '_';
   return ::testing::TempDir() + test + "_" + file;
 }
+
+/// Seeded uniform draws for random scenes, each vector's components drawn x, y, z in turn.
+/// Draws written as the arguments of one call, V3(draw(), draw(), draw()), are taken in
+/// the order the compiler evaluates arguments, which g++ and clang do not share: one seed
+/// then gives each compiler scenes of its own (a toss that struck a wall under g++ fell
+/// short of it under clang). Take each draw in its own statement, or through vector().
+class SeededDraws {
+ public:
+  explicit SeededDraws(unsigned long long seed) : random_(seed) {}
+  double between(double lo, double hi) { return lo + (hi - lo) * unit_(random_); }
+  /// Each component between lo's and hi's.
+  Eigen::Vector3d vector(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) v[k] = between(lo[k], hi[k]);
+    return v;
+  }
+  Eigen::Vector3d vector(double lo, double hi) { return vector(Eigen::Vector3d::Constant(lo), Eigen::Vector3d::Constant(hi)); }
+  /// A unit vector (not uniform over the sphere: enough for an axis).
+  Eigen::Vector3d direction() { return vector(-1.0, 1.0).normalized(); }
+
+ private:
+  std::mt19937_64 random_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+};
 
 /// |a - b| <= tol, printing both vectors on failure (FCL's eigen_matrix_compare habit).
 inline ::testing::AssertionResult near(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) {

@@ -224,14 +224,13 @@ TEST(SpeculativeContacts, ATippingBoxBacksUpLessOftenAndRestsFlat) {
 // of swinging down onto its face and backing up a second time. Half the trials land on
 // a resting box of random height, half on the floor.
 TEST(SpeculativeContacts, ABoxDroppedNearlyFlatLandsInOneEvent) {
-  std::mt19937_64 random(11);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(random); };
+  ::polysim::test::SeededDraws draw(11);
+  const auto between = [&](double lo, double hi) { return draw.between(lo, hi); };
   for (int trial = 0; trial < 12; ++trial) {
     Scene scene = test::scene("tilted_drop", false);
     scene.dt = 1.0 / 60;
     BodySpec& box = scene.bodies[1];
-    box.boxSize = V3(between(0.4, 1.2), between(0.4, 1.2), between(0.4, 1.2));
+    box.boxSize = draw.vector(0.4, 1.2);
     box.mesh = collision::makeBox(box.boxSize);
     const double tilt = between(0.1, 1.0) * 0.5 * kSpeculativeReach / box.boxSize.head<2>().norm();
     const double heading = between(0.0, 2 * M_PI);
@@ -246,10 +245,10 @@ TEST(SpeculativeContacts, ABoxDroppedNearlyFlatLandsInOneEvent) {
       base.position = V3(0, 0, base.boxSize.z() / 2);
       base.mass = 5.0;
       floorTop = base.boxSize.z();
-      box.position = V3(between(-0.3, 0.3), between(-0.3, 0.3), floorTop + box.boxSize.z() / 2 + between(0.3, 1.5));
+      box.position = draw.vector(V3(-0.3, -0.3, 0.3), V3(0.3, 0.3, 1.5)) + V3(0, 0, floorTop + box.boxSize.z() / 2);
       scene.bodies.push_back(base);  // `box` no longer refers to the scene's body from here
     } else {
-      box.position = V3(between(-0.3, 0.3), between(-0.3, 0.3), box.boxSize.z() / 2 + between(0.3, 1.5));
+      box.position = draw.vector(V3(-0.3, -0.3, 0.3), V3(0.3, 0.3, 1.5)) + V3(0, 0, box.boxSize.z() / 2);
     }
     const BodySpec& dropped = scene.bodies[1];
     SCOPED_TRACE("trial " + std::to_string(trial) + ": tilt " + std::to_string(tilt) + " rad, size " +

@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
 #include <set>
 
 #include "collision/shapes.h"
@@ -66,9 +65,8 @@ int expectContactsOfTheWholeDatabase(World& w, double seconds) {
 TEST(StepContacts, RestingRowsReportEveryNeighbourWithinTheTolerance) {
   for (unsigned seed = 1; seed <= 8; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937_64 random(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(random); };
+    ::polysim::test::SeededDraws draw(seed);
+    const auto between = [&](double lo, double hi) { return draw.between(lo, hi); };
     Scene scene = test::scene("box_on_ground", false);
     scene.dt = 1.0 / 60;
     const BodySpec boxTemplate = scene.bodies[1];
@@ -79,7 +77,7 @@ TEST(StepContacts, RestingRowsReportEveryNeighbourWithinTheTolerance) {
     for (int k = 0; k < count; ++k) {
       BodySpec box = boxTemplate;
       box.name = "box" + std::to_string(k);
-      box.boxSize = V3(between(0.3, 1.0), between(0.3, 1.0), between(0.3, 1.0));
+      box.boxSize = draw.vector(0.3, 1.0);
       box.mesh = collision::makeBox(box.boxSize);
       box.mass = between(0.5, 3.0);
       if (k > 0) x += between(0.0, 2.0) * tolerance;  // the gap: half the rows' gaps are within the tolerance
@@ -100,24 +98,24 @@ TEST(StepContacts, RestingRowsReportEveryNeighbourWithinTheTolerance) {
 TEST(StepContacts, ABoxCreepingUpToAnotherIsInContactFromWithinTheTolerance) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937_64 random(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(random); };
+    ::polysim::test::SeededDraws draw(seed);
+    const auto between = [&](double lo, double hi) { return draw.between(lo, hi); };
     Scene scene = test::scene("box_on_ground", false);
     scene.dt = 1.0 / 60;
     scene.contact.friction = 0.0;
     BodySpec creeper = scene.bodies[1];
-    creeper.boxSize = V3(between(0.3, 1.0), between(0.3, 1.0), between(0.3, 1.0));
+    creeper.boxSize = draw.vector(0.3, 1.0);
     creeper.mesh = collision::makeBox(creeper.boxSize);
     creeper.position = V3(0, 0, creeper.boxSize.z() / 2);
     const double speed = between(0.5e-3, 3e-3), gap = between(1e-3, 3e-3);
     creeper.velocity = V3(speed, 0, 0);
     BodySpec resting = creeper;
     resting.name = "resting";
-    resting.boxSize = V3(between(0.3, 1.0), between(0.3, 1.0), between(0.3, 1.0));
+    resting.boxSize = draw.vector(0.3, 1.0);
     resting.mesh = collision::makeBox(resting.boxSize);
     resting.velocity.setZero();
-    resting.position = V3((creeper.boxSize.x() + resting.boxSize.x()) / 2 + gap, between(-0.1, 0.1), resting.boxSize.z() / 2);
+    const double sideways = between(-0.1, 0.1);
+    resting.position = V3((creeper.boxSize.x() + resting.boxSize.x()) / 2 + gap, sideways, resting.boxSize.z() / 2);
     scene.bodies[1] = creeper;
     scene.bodies.push_back(resting);
     World w(scene);

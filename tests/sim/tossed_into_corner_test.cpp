@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <string>
 
 #include "collision/shapes.h"
@@ -32,22 +31,26 @@ BodySpec staticBox(const std::string& name, const V3& size, const V3& centre) {
   return b;
 }
 
-// The tossed body of trial `k`: its shape by turn, its size and the rest from `random`.
-BodySpec tossedBody(int k, std::mt19937_64& random) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(random); };
+// The tossed body of trial `k`: its shape by turn, the rest drawn. It starts 1.4 to
+// 1.8 m from each wall (clear of both: no shape reaches 1.2 m from its origin), 2 to 3 m
+// up, and moves towards both walls at 3 to 6 m/s: its centre would reach a wall's plane
+// within 0.6 s, about when it first lands, and friction (0.5 g) takes 0.6 s or more to
+// stop it.
+BodySpec tossedBody(int k, ::polysim::test::SeededDraws& draw) {
   BodySpec b;
   b.name = "tossed";
   switch (k % 4) {
     case 0:
       b.shapeType = "box";
-      b.boxSize = V3(between(0.2, 1.0), between(0.2, 1.0), between(0.2, 1.0));
+      b.boxSize = draw.vector(0.2, 1.0);
       b.mesh = collision::makeBox(b.boxSize);
       break;
-    case 1:
+    case 1: {
       b.shapeType = "mesh";
-      b.mesh = ::polysim::test::makeHexPrism(between(0.2, 0.5), between(0.2, 0.8));
+      const double radius = draw.between(0.2, 0.5);
+      b.mesh = ::polysim::test::makeHexPrism(radius, draw.between(0.2, 0.8));
       break;
+    }
     case 2:
       b.shapeType = "mesh";
       b.mesh = ::polysim::test::makeL();  // 2 x 1 x 2 m, its origin at a corner
@@ -58,60 +61,110 @@ BodySpec tossedBody(int k, std::mt19937_64& random) {
       b.mesh = ::polysim::test::makeCup(0.4, 0.6, 0.06, 0.08);
       break;
   }
-  b.mass = between(0.5, 5.0);
-  const V3 axis = V3(between(-1, 1), between(-1, 1), between(-1, 1)).normalized();
-  b.orientation = Eigen::AngleAxisd(between(0.0, 2 * M_PI), axis);
-  b.position = V3(between(1.2, 2.0), between(1.2, 2.0), between(1.5, 2.5));
-  b.velocity = V3(between(-6.0, -1.5), between(-6.0, -1.5), between(-1.0, 2.0));
-  const V3 spinAxis = V3(between(-1, 1), between(-1, 1), between(-1, 1)).normalized();
-  b.angularVelocity = between(3.0, 25.0) * spinAxis;
+  b.mass = draw.between(0.5, 5.0);
+  const V3 axis = draw.direction();
+  b.orientation = Eigen::AngleAxisd(draw.between(0.0, 2 * M_PI), axis);
+  b.position = draw.vector(V3(1.4, 1.4, 2.0), V3(1.8, 1.8, 3.0));
+  b.velocity = draw.vector(V3(-6.0, -6.0, -1.0), V3(-3.0, -3.0, 2.0));
+  const V3 spinAxis = draw.direction();
+  b.angularVelocity = draw.between(3.0, 25.0) * spinAxis;
   return b;
 }
 
+// Trial `k`'s scene: the floor and two walls, then the tossed body (body 3), drawn next
+// from `draw`; restitution 0.4 every third trial, else 0.
+Scene tossScene(::polysim::test::SeededDraws& draw, int k) {
+  Scene scene = test::scene("box_on_ground", false);
+  scene.dt = 1.0 / 60;
+  scene.contact.restitution = k % 3 == 2 ? 0.4 : 0.0;
+  // Wide enough that a rebound off the walls ends on the floor, not off its edge.
+  scene.bodies = {staticBox("floor", V3(60, 60, 1), V3(25, 25, -0.5)),
+                  staticBox("wall_x", V3(1, 60, 4), V3(-0.5, 25, 2)),   // its face at x = 0
+                  staticBox("wall_y", V3(60, 1, 4), V3(25, -0.5, 2))};  // its face at y = 0
+  scene.bodies.push_back(tossedBody(k, draw));
+  return scene;
+}
+
+constexpr int kTossed = 3;  // the tossed body's index
+
+// What a toss kept true, step by step.
+struct Toss {
+  double rise = 0.0;     // J, largest rise of the energy over its start
+  double bound = 0.0;    // J, SPEC's energy bound for the body: m g eps
+  double deepest = 0.0;  // m, deepest overlap of a committed state
+  int interpenetrating = 0;  // steps ending interpenetrating by a fresh test
+  int throughAWall = 0;      // steps ending with a vertex beyond a wall or the floor
+  int wallEvents = 0;        // events whose crossing pairs hold a wall
+  int eventsLastSecond = 0;
+  bool finite = true;
+  bool atRest = false;       // at the end
+  double speed = 0.0;        // m/s, at the end
+};
+
+Toss runToss(const Scene& scene, double seconds) {
+  World w(scene);
+  const BodySpec& tossed = scene.bodies[kTossed];
+  Toss t;
+  t.bound = test::g * scene.contact.tolerance / w.bodies()[kTossed].inverseMass;
+  const double initial = w.energy();
+  test::FreshVerdict fresh(scene);
+  test::runFor(w, seconds, [&](const StepReport& r) {
+    const dynamics::RigidBody& b = w.bodies()[kTossed];
+    t.finite = t.finite && b.position.allFinite() && b.velocity.allFinite() && b.angularVelocity.allFinite();
+    t.rise = std::max(t.rise, w.energy() - initial);
+    t.deepest = std::max(t.deepest, r.penetration);
+    t.interpenetrating += fresh.interpenetrating(w);
+    double lowest = 0.0;  // m, the least coordinate of a vertex: below zero, beyond a wall or the floor
+    for (const Eigen::Vector3d& v : tossed.mesh.vertices) lowest = std::min(lowest, (b.pose() * v).minCoeff());
+    t.throughAWall += lowest < -scene.contact.tolerance;
+    for (const StepEvent& e : r.events)
+      for (const auto& [a, c] : e.toc.crossing) t.wallEvents += a == 1 || a == 2 || c == 1 || c == 2;
+    if (w.time() > seconds - 1.0) t.eventsLastSecond += static_cast<int>(r.events.size());
+  });
+  t.atRest = w.atRest(kTossed);
+  t.speed = w.bodies()[kTossed].velocity.norm();
+  return t;
+}
+
+void expectInvariants(const Toss& t, double tolerance) {
+  EXPECT_TRUE(t.finite);
+  EXPECT_LE(t.rise, t.bound) << "energy rose above the start by " << t.rise << " J";
+  EXPECT_LE(t.deepest, tolerance);
+  EXPECT_EQ(t.interpenetrating, 0) << "steps ending interpenetrating by a fresh test";
+  EXPECT_EQ(t.throughAWall, 0) << "steps ending with a vertex beyond a wall or the floor";
+}
+
 TEST(TossedIntoCorner, SeededMixedShapesSettleInTheCornerWithoutGainingEnergy) {
-  std::mt19937_64 random(2026);
+  ::polysim::test::SeededDraws draw(2026);
   for (int trial = 0; trial < 24; ++trial) {
-    Scene scene = test::scene("box_on_ground", false);
-    scene.dt = 1.0 / 60;
-    scene.contact.restitution = trial % 3 == 2 ? 0.4 : 0.0;
-    // Wide enough that a rebound off the walls ends on the floor, not off its edge.
-    scene.bodies = {staticBox("floor", V3(60, 60, 1), V3(25, 25, -0.5)),
-                    staticBox("wall_x", V3(1, 60, 4), V3(-0.5, 25, 2)),   // its face at x = 0
-                    staticBox("wall_y", V3(60, 1, 4), V3(25, -0.5, 2))};  // its face at y = 0
-    scene.bodies.push_back(tossedBody(trial, random));
-    const BodySpec& tossed = scene.bodies.back();
+    const Scene scene = tossScene(draw, trial);
+    const BodySpec& tossed = scene.bodies[kTossed];
     SCOPED_TRACE("trial " + std::to_string(trial) + " (shape " + std::to_string(trial % 4) + ", restitution " +
                  std::to_string(scene.contact.restitution) + ", spin " + std::to_string(tossed.angularVelocity.norm()) +
                  " rad/s)");
-    World w(scene);
-    const int body = 3;
-    const double mass = 1.0 / w.bodies()[body].inverseMass;
-    const double bound = mass * test::g * scene.contact.tolerance;  // SPEC's energy bound
-    const double initial = w.energy();
-    test::FreshVerdict fresh(scene);
-    double rise = 0.0, deepest = 0.0;
-    int interpenetrating = 0, throughAWall = 0, wallEvents = 0;
-    bool finite = true;
-    test::runFor(w, 6.0, [&](const StepReport& r) {
-      const dynamics::RigidBody& b = w.bodies()[body];
-      finite = finite && b.position.allFinite() && b.velocity.allFinite() && b.angularVelocity.allFinite();
-      rise = std::max(rise, w.energy() - initial);
-      deepest = std::max(deepest, r.penetration);
-      interpenetrating += fresh.interpenetrating(w);
-      double lowest = 0.0;  // m, the least coordinate of a vertex: below zero, beyond a wall or the floor
-      for (const Eigen::Vector3d& v : tossed.mesh.vertices) lowest = std::min(lowest, (b.pose() * v).minCoeff());
-      throughAWall += lowest < -scene.contact.tolerance;
-      for (const StepEvent& e : r.events)
-        for (const auto& [a, c] : e.toc.crossing) wallEvents += a == 1 || a == 2 || c == 1 || c == 2;
-    });
-    EXPECT_TRUE(finite);
-    EXPECT_LE(rise, bound) << "energy rose above the start by " << rise << " J";
-    EXPECT_LE(deepest, scene.contact.tolerance);
-    EXPECT_EQ(interpenetrating, 0) << "steps ending interpenetrating by a fresh test";
-    EXPECT_EQ(throughAWall, 0) << "steps ending with a vertex beyond a wall or the floor";
-    EXPECT_TRUE(w.atRest(body)) << "still moving at 6 s: " << w.bodies()[body].velocity.norm() << " m/s";
-    EXPECT_GT(wallEvents, 0) << "the toss never struck a wall: the trial tests only a drop";
+    const Toss t = runToss(scene, 6.0);
+    expectInvariants(t, scene.contact.tolerance);
+    EXPECT_TRUE(t.atRest) << "still moving at 6 s: " << t.speed << " m/s";
+    EXPECT_GT(t.wallEvents, 0) << "the toss never struck a wall: the trial tests only a drop";
   }
+}
+
+// A failure, pinned (README, Where polysim fails): draws 31337, trial 3, a cup tossed at
+// 23 rad/s, ends on its side by 2 s and rocks there for good in a cycle two steps long.
+// Each step it tips about one edge of the side it lies on and, a quarter step in, backs
+// up to its other edge touching the floor; the event's solve hands it the mirror image of
+// its motion, losing nothing: 1.76 cm/s and 0.031 rad/s at every step's end, one event a
+// step, its energy the same to 1e-6 J, creeping 0.3 mm/s. The invariants hold; rest
+// does not. A fix turns the last two expectations around and adds this seed to the test
+// above.
+TEST(TossedIntoCorner, ACupOnItsSideRocksInATwoStepCycleWithoutGainingEnergy) {
+  ::polysim::test::SeededDraws draw(31337);
+  for (int k = 0; k < 3; ++k) tossScene(draw, k);  // the draws of the trials before
+  const Scene scene = tossScene(draw, 3);
+  const Toss t = runToss(scene, 10.0);
+  expectInvariants(t, scene.contact.tolerance);
+  EXPECT_FALSE(t.atRest);
+  EXPECT_EQ(t.eventsLastSecond, 60) << "one event a step";
 }
 
 }  // namespace
