@@ -169,7 +169,8 @@ class World {
   std::vector<collision::PairResult> solverContactsOnceLanded(const collision::ObjectDatabase& db,
                                                               const std::vector<int>& bodyOf,
                                                               const std::vector<collision::PairResult>& touching);
-  /// `touching` with the speculative contacts of settled convex bodies (speculative_contacts.h);
+  /// `touching` with the speculative contacts of settled bodies (speculative_contacts.h): pairs
+  /// of convex bodies, and of a body that is not convex with a static convex one;
   /// `onceLanded`: as solverContactsOnceLanded() says.
   std::vector<collision::PairResult> speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                          const std::vector<collision::PairResult>& touching,

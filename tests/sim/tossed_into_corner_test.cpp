@@ -149,22 +149,22 @@ TEST(TossedIntoCorner, SeededMixedShapesSettleInTheCornerWithoutGainingEnergy) {
   }
 }
 
-// A failure, pinned (README, Where polysim fails): draws 31337, trial 3, a cup tossed at
-// 23 rad/s, ends on its side by 2 s and rocks there for good in a cycle two steps long.
-// Each step it tips about one edge of the side it lies on and, a quarter step in, backs
-// up to its other edge touching the floor; the event's solve hands it the mirror image of
-// its motion, losing nothing: 1.76 cm/s and 0.031 rad/s at every step's end, one event a
-// step, its energy the same to 1e-6 J, creeping 0.3 mm/s. The invariants hold; rest
-// does not. A fix turns the last two expectations around and adds this seed to the test
-// above.
-TEST(TossedIntoCorner, ACupOnItsSideRocksInATwoStepCycleWithoutGainingEnergy) {
+// Draws 31337, trial 3: a cup tossed at 23 rad/s ends on its side by 2 s. While a cup
+// did not speculate (it is not convex), it rocked there for good in a cycle two steps
+// long: each step began with its side on the floor along one edge only, the other lifted
+// past the wide band by the event before; the step's solve, holding all its gravity on
+// that edge, tipped the cup onto the other at 0.11 rad/s, and the impact kept a quarter
+// of the spin and lifted the first edge out of the band again (1.76 cm/s at every step's
+// end, one event a step, the energy the same to 1e-6 J). Speculating against the floor,
+// the cup holds both edges from the step's start and rests.
+TEST(TossedIntoCorner, ACupTossedOntoItsSideComesToRest) {
   ::polysim::test::SeededDraws draw(31337);
   for (int k = 0; k < 3; ++k) tossScene(draw, k);  // the draws of the trials before
   const Scene scene = tossScene(draw, 3);
   const Toss t = runToss(scene, 10.0);
   expectInvariants(t, scene.contact.tolerance);
-  EXPECT_FALSE(t.atRest);
-  EXPECT_EQ(t.eventsLastSecond, 60) << "one event a step";
+  EXPECT_TRUE(t.atRest) << "moving at " << t.speed << " m/s";
+  EXPECT_EQ(t.eventsLastSecond, 0);
 }
 
 }  // namespace
