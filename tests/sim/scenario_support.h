@@ -10,6 +10,7 @@
 #include <string>
 
 #include "collision/intersection.h"
+#include "collision/shapes.h"
 #include "sim/scene.h"
 #include "sim/scene_generators.h"
 #include "sim/world.h"
@@ -25,6 +26,13 @@ inline Scene scene(const std::string& name, bool sleeping = true) {
   Scene s = loadScene(std::string(POLYSIM_SCENES_DIR) + "/" + name + ".json");
   s.sleep.enabled = sleeping;
   return s;
+}
+
+// Makes `body` a box of `size` (m), as a scene file's "box" shape does.
+inline void setBoxSize(BodySpec& body, const V3& size) {
+  body.shapeType = "box";
+  body.boxSize = size;
+  body.mesh = collision::makeBox(size);
 }
 
 // The scene `polysim make KIND --count N --seed S [--tilt T]` writes, read back as a

@@ -225,32 +225,27 @@ TEST(SpeculativeContacts, ATippingBoxBacksUpLessOftenAndRestsFlat) {
 // a resting box of random height, half on the floor.
 TEST(SpeculativeContacts, ABoxDroppedNearlyFlatLandsInOneEvent) {
   ::polysim::test::SeededDraws draw(11);
-  const auto between = [&](double lo, double hi) { return draw.between(lo, hi); };
   for (int trial = 0; trial < 12; ++trial) {
     Scene scene = test::scene("tilted_drop", false);
     scene.dt = 1.0 / 60;
     BodySpec& box = scene.bodies[1];
-    box.boxSize = draw.vector(0.4, 1.2);
-    box.mesh = collision::makeBox(box.boxSize);
-    const double tilt = between(0.1, 1.0) * 0.5 * kSpeculativeReach / box.boxSize.head<2>().norm();
-    const double heading = between(0.0, 2 * M_PI);
+    test::setBoxSize(box, draw.vector(0.4, 1.2));
+    const double tilt = draw.between(0.1, 1.0) * 0.5 * kSpeculativeReach / box.boxSize.head<2>().norm();
+    const double heading = draw.between(0.0, 2 * M_PI);
     box.orientation = Eigen::AngleAxisd(tilt, V3(std::cos(heading), std::sin(heading), 0));
     double floorTop = 0.0;
     if (trial % 2 == 1) {  // a resting box under it, wider than the one dropped
       BodySpec base = box;
       base.name = "base";
-      base.boxSize = V3(2, 2, between(0.3, 1.0));
-      base.mesh = collision::makeBox(base.boxSize);
+      test::setBoxSize(base, V3(2, 2, draw.between(0.3, 1.0)));
       base.orientation = Eigen::Quaterniond::Identity();
       base.position = V3(0, 0, base.boxSize.z() / 2);
       base.mass = 5.0;
       floorTop = base.boxSize.z();
-      box.position = draw.vector(V3(-0.3, -0.3, 0.3), V3(0.3, 0.3, 1.5)) + V3(0, 0, floorTop + box.boxSize.z() / 2);
       scene.bodies.push_back(base);  // `box` no longer refers to the scene's body from here
-    } else {
-      box.position = draw.vector(V3(-0.3, -0.3, 0.3), V3(0.3, 0.3, 1.5)) + V3(0, 0, box.boxSize.z() / 2);
     }
-    const BodySpec& dropped = scene.bodies[1];
+    BodySpec& dropped = scene.bodies[1];
+    dropped.position = draw.vector(V3(-0.3, -0.3, 0.3), V3(0.3, 0.3, 1.5)) + V3(0, 0, floorTop + dropped.boxSize.z() / 2);
     SCOPED_TRACE("trial " + std::to_string(trial) + ": tilt " + std::to_string(tilt) + " rad, size " +
                  std::to_string(dropped.boxSize.x()) + " x " + std::to_string(dropped.boxSize.y()));
     World w(scene);

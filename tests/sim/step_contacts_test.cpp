@@ -7,7 +7,6 @@
 
 #include <set>
 
-#include "collision/shapes.h"
 #include "tests/sim/scenario_support.h"
 
 namespace polysim::sim {
@@ -66,7 +65,6 @@ TEST(StepContacts, RestingRowsReportEveryNeighbourWithinTheTolerance) {
   for (unsigned seed = 1; seed <= 8; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     ::polysim::test::SeededDraws draw(seed);
-    const auto between = [&](double lo, double hi) { return draw.between(lo, hi); };
     Scene scene = test::scene("box_on_ground", false);
     scene.dt = 1.0 / 60;
     const BodySpec boxTemplate = scene.bodies[1];
@@ -77,10 +75,9 @@ TEST(StepContacts, RestingRowsReportEveryNeighbourWithinTheTolerance) {
     for (int k = 0; k < count; ++k) {
       BodySpec box = boxTemplate;
       box.name = "box" + std::to_string(k);
-      box.boxSize = draw.vector(0.3, 1.0);
-      box.mesh = collision::makeBox(box.boxSize);
-      box.mass = between(0.5, 3.0);
-      if (k > 0) x += between(0.0, 2.0) * tolerance;  // the gap: half the rows' gaps are within the tolerance
+      test::setBoxSize(box, draw.vector(0.3, 1.0));
+      box.mass = draw.between(0.5, 3.0);
+      if (k > 0) x += draw.between(0.0, 2.0) * tolerance;  // the gap: half the rows' gaps are within the tolerance
       box.position = V3(x + box.boxSize.x() / 2, 0, box.boxSize.z() / 2);
       x += box.boxSize.x();
       scene.bodies.push_back(box);
@@ -99,22 +96,19 @@ TEST(StepContacts, ABoxCreepingUpToAnotherIsInContactFromWithinTheTolerance) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     ::polysim::test::SeededDraws draw(seed);
-    const auto between = [&](double lo, double hi) { return draw.between(lo, hi); };
     Scene scene = test::scene("box_on_ground", false);
     scene.dt = 1.0 / 60;
     scene.contact.friction = 0.0;
     BodySpec creeper = scene.bodies[1];
-    creeper.boxSize = draw.vector(0.3, 1.0);
-    creeper.mesh = collision::makeBox(creeper.boxSize);
+    test::setBoxSize(creeper, draw.vector(0.3, 1.0));
     creeper.position = V3(0, 0, creeper.boxSize.z() / 2);
-    const double speed = between(0.5e-3, 3e-3), gap = between(1e-3, 3e-3);
+    const double speed = draw.between(0.5e-3, 3e-3), gap = draw.between(1e-3, 3e-3);
     creeper.velocity = V3(speed, 0, 0);
     BodySpec resting = creeper;
     resting.name = "resting";
-    resting.boxSize = draw.vector(0.3, 1.0);
-    resting.mesh = collision::makeBox(resting.boxSize);
+    test::setBoxSize(resting, draw.vector(0.3, 1.0));
     resting.velocity.setZero();
-    const double sideways = between(-0.1, 0.1);
+    const double sideways = draw.between(-0.1, 0.1);
     resting.position = V3((creeper.boxSize.x() + resting.boxSize.x()) / 2 + gap, sideways, resting.boxSize.z() / 2);
     scene.bodies[1] = creeper;
     scene.bodies.push_back(resting);

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <string>
 
-#include "collision/shapes.h"
 #include "tests/sim/scenario_support.h"
 #include "tests/test_support.h"
 
@@ -23,10 +22,8 @@ using test::V3;
 BodySpec staticBox(const std::string& name, const V3& size, const V3& centre) {
   BodySpec b;
   b.name = name;
-  b.shapeType = "box";
   b.isStatic = true;
-  b.boxSize = size;
-  b.mesh = collision::makeBox(size);
+  test::setBoxSize(b, size);
   b.position = centre;
   return b;
 }
@@ -41,9 +38,7 @@ BodySpec tossedBody(int k, ::polysim::test::SeededDraws& draw) {
   b.name = "tossed";
   switch (k % 4) {
     case 0:
-      b.shapeType = "box";
-      b.boxSize = draw.vector(0.2, 1.0);
-      b.mesh = collision::makeBox(b.boxSize);
+      test::setBoxSize(b, draw.vector(0.2, 1.0));
       break;
     case 1: {
       b.shapeType = "mesh";
