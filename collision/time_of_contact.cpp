@@ -122,6 +122,20 @@ void startBracket(Search& s, Bracket& br, bool byAxes, std::optional<Intersectio
   br.fresh = noneInContact(*atStart, br.hiPairs);
 }
 
+// bisect() testing the crossing pairs, its premise checked at the time it found with
+// every pair that can meet (the test whose contacts are returned): when another pair
+// interpenetrates there, the bracket is bisected again from the start watching every
+// pair (counted in `redone`).
+Found bisectCheckingItsPremise(Search& s, Bracket& br, int& redone) {
+  const Bracket whole = br;
+  Found found = bisect(s, br, BisectionTests::CrossingPairs);
+  found.atTime = s.statusAt(found.time, true);
+  if (found.atTime->status != Status::Interpenetrating) return found;
+  ++redone;
+  br = whole;
+  return bisect(s, br, BisectionTests::EveryWatchedPair);
+}
+
 }  // namespace
 
 TocResult collisionDetect(ObjectDatabase& db, const TocOptions& options) {
@@ -145,7 +159,9 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
   Found found{1.0, TocStop::NoInterpenetration};
   if (bracket) {
     startBracket(s, *bracket, scanByAxes, std::move(atStart));
-    found = options.method == TocMethod::Bisection ? bisect(s, *bracket) : regulaFalsi(s, *bracket);
+    if (options.method == TocMethod::RegulaFalsi) found = regulaFalsi(s, *bracket);
+    else if (options.watchEveryPairWhileBisecting) found = bisect(s, *bracket, BisectionTests::EveryWatchedPair);
+    else found = bisectCheckingItsPremise(s, *bracket, result.bisectionsRedone);
     result.crossing = std::move(bracket->hiPairs);
   }
 

@@ -35,6 +35,10 @@ enum class TocStop {
 
 struct TocOptions {
   TocMethod method = TocMethod::Bisection;
+  /// Bisection: each guess tests every pair that can interpenetrate inside the bracket,
+  /// not only those crossing at its end (toc_search.h). Slower; the reference the
+  /// default is checked against, as the seed's search was written.
+  bool watchEveryPairWhileBisecting = false;
 };
 
 struct TocResult {
@@ -51,6 +55,10 @@ struct TocResult {
   /// States whose signed separation regula falsi measured instead of testing them (0
   /// for bisection); a separation of convex objects costs a fraction of a test.
   int separations = 0;
+  /// Bisections done again testing every watched pair at each guess (toc_search.h,
+  /// bisect()): the time found by testing only the crossing pairs had another pair
+  /// interpenetrating. 0 or 1.
+  int bisectionsRedone = 0;
   /// The pairs (object indices, a < b) found interpenetrating just past `time`: what
   /// stopped the interval there. Empty when nothing interpenetrated up to t = 1.
   std::vector<std::pair<int, int>> crossing;

@@ -26,6 +26,18 @@ IntersectionResult Search::statusAt(double t, bool contacts) {
   return test4Intersection(db, ws, options);
 }
 
+IntersectionResult Search::statusOfPairsAt(const PairIds& ids, double t) {
+  for (const auto& [a, b] : ids)
+    for (int i : {a, b})
+      if (ObjNode& o = db.objects[i]; o.ctrans) o.ctrans(t, o.info, o.X_WO);
+  ++tests;
+  IntersectionOptions options;
+  options.contacts = false;
+  options.onlyPairs = &ids;
+  pairTests += static_cast<long>(ids.size());
+  return test4Intersection(db, ws, options);
+}
+
 namespace {
 
 // False when A and B are convex and their separation at their current poses, less
@@ -197,16 +209,17 @@ void narrowToBracket(Search& s, const Bracket& br) {
 
 }  // namespace
 
-Found bisect(Search& s, Bracket& br) {
+Found bisect(Search& s, Bracket& br, BisectionTests tests) {
+  const bool watchAll = tests == BisectionTests::EveryWatchedPair;
   double narrowedAt = 2.0 * kNarrowingShrink;  // wider than any bracket: narrow at once
   for (int guess = 0; guess < kMaxTimeOfContactIterations; ++guess) {
     if (narrowEnough(br, s.db.tolerance)) return {br.lo, TocStop::TimeTolerance};
-    if (br.hi - br.lo <= narrowedAt / kNarrowingShrink) {
+    if (watchAll && br.hi - br.lo <= narrowedAt / kNarrowingShrink) {
       narrowToBracket(s, br);
       narrowedAt = br.hi - br.lo;
     }
     const double t = 0.5 * (br.lo + br.hi);
-    const IntersectionResult r = s.statusAt(t);
+    const IntersectionResult r = watchAll ? s.statusAt(t) : s.statusOfPairsAt(br.hiPairs, t);
     if (r.status == Status::Interpenetrating) {
       br.hi = t;
       br.hiPairs = interpenetratingPairs(r);
@@ -260,7 +273,7 @@ Found regulaFalsi(Search& s, Bracket& br) {
     // along, so it has no sign change to chase, and taking "negative" for "past the root"
     // would narrow the bracket onto its start and return the very state it began from.
     // Only the test's verdict tells the two sides apart there, as in bisection.
-    return bisect(s, br);
+    return bisect(s, br, BisectionTests::EveryWatchedPair);
   }
   bool alone = separationDecidesAlone(s, br.hiPairs);
   // The last separations measured, newest last: the interpolation through them is the

@@ -47,6 +47,9 @@ struct Search {
   /// cannot interpenetrate decides nothing in the search), or of those that can in the
   /// bracket once it has narrowed them.
   IntersectionResult statusAt(double t, bool contacts = false);
+  /// The status at time t of the pairs `ids` alone (no contacts): only their objects are
+  /// moved to t, the others stay where they were.
+  IntersectionResult statusOfPairsAt(const PairIds& ids, double t);
 };
 
 PairIds interpenetratingPairs(const IntersectionResult& r);
@@ -95,9 +98,23 @@ struct Found {
   std::optional<IntersectionResult> atTime = std::nullopt;
 };
 
+/// What each guess of bisect() tests.
+enum class BisectionTests {
+  /// Only the bracket's hiPairs: a pair apart at both ends of a bracket is taken to stay
+  /// apart inside it, the premise of the scan itself (collisionDetect(): a touch that
+  /// begins and ends between two tests is missed). A landing pile's island watches some
+  /// 60 resting pairs at each guess, for the one or two that cross. collisionDetect()
+  /// checks the premise at the time found, with every pair that can meet, and bisects
+  /// again watching every pair when it did not hold there.
+  CrossingPairs,
+  /// Every pair that can interpenetrate inside the bracket (Search::watched, narrowed as
+  /// the bracket shrinks): the time found never interpenetrates.
+  EveryWatchedPair,
+};
+
 /// The seed's root finder: halves the bracket until the state is contact. Leaves `br`
 /// narrowed to where it stopped (its hiPairs: the pairs interpenetrating just past it).
-Found bisect(Search& s, Bracket& br);
+Found bisect(Search& s, Bracket& br, BisectionTests tests);
 /// Regula falsi on the signed separation of the bracket's pairs (TocMethod::RegulaFalsi);
 /// leaves `br` as bisect() does.
 Found regulaFalsi(Search& s, Bracket& br);

@@ -44,9 +44,12 @@ class TocWorld {
   }
   /// collisionDetect() over [0, 1] from the objects' t = 1 poses.
   collision::TocResult detect(collision::TocMethod method) {
-    db.setTime(1.0);
     collision::TocOptions options;
     options.method = method;
+    return detect(options);
+  }
+  collision::TocResult detect(const collision::TocOptions& options) {
+    db.setTime(1.0);
     return collision::collisionDetect(db, options);
   }
   collision::ObjectDatabase db;
