@@ -5,6 +5,7 @@
 #include <map>
 #include <utility>
 
+#include "collision/broadphase.h"
 #include "sim/contact_points.h"
 
 namespace polysim::sim {
@@ -89,14 +90,14 @@ std::vector<collision::PairResult> speculativePairs(const collision::ObjectDatab
   if (!anyMoving) return {};
   collision::IntersectionOptions options;
   std::vector<std::pair<int, int>> among;  // the pairs with a marked body the whole test would try
-  if (onlyOf) {
-    const int n = static_cast<int>(near.objects.size());
-    for (int i = 0; i < n; ++i)
-      if ((*onlyOf)[bodyOfNear[i]])
-        for (int j = 0; j < n; ++j)
-          if (j != i && !(near.objects[i].isStatic && near.objects[j].isStatic)) among.emplace_back(std::min(i, j), std::max(i, j));
-    std::sort(among.begin(), among.end());
-    among.erase(std::unique(among.begin(), among.end()), among.end());
+  if (onlyOf) {  // sweep and prune over all, then the pairs with a marked body (in the same order)
+    std::vector<Eigen::AlignedBox3d> boxes;
+    collision::candidateObjectPairs(near, boxes, among);
+    among.erase(std::remove_if(among.begin(), among.end(),
+                               [&](const std::pair<int, int>& p) {
+                                 return !(*onlyOf)[bodyOfNear[p.first]] && !(*onlyOf)[bodyOfNear[p.second]];
+                               }),
+                among.end());
     options.onlyPairs = &among;
   }
   std::vector<collision::PairResult> found = collision::test4Intersection(near, workspace, options).pairs;
