@@ -25,6 +25,25 @@ inline std::string tempPath(const std::string& file) {
   return ::testing::TempDir() + test + "_" + file;
 }
 
+/// `draw()` (any callable returning a double) three times, as x, y, z in that order: for
+/// tests that draw from their own generator and distribution. V3(d(rng), d(rng), d(rng))
+/// takes its draws in the order the compiler evaluates a call's arguments (SeededDraws,
+/// below); this takes them left to right, clang's order, so the scenes the clang pass
+/// always checked are the ones both passes check.
+template <class Draw>
+Eigen::Vector3d drawnVector(Draw&& draw) {
+  Eigen::Vector3d v;
+  for (int k = 0; k < 3; ++k) v[k] = draw();
+  return v;
+}
+/// The same for a quaternion's w, x, y, z (not normalized).
+template <class Draw>
+Eigen::Quaterniond drawnQuaternion(Draw&& draw) {
+  const double w = draw();
+  const Eigen::Vector3d xyz = drawnVector(draw);
+  return Eigen::Quaterniond(w, xyz.x(), xyz.y(), xyz.z());
+}
+
 /// Seeded uniform draws for random scenes, each vector's components drawn x, y, z in turn.
 /// Draws written as the arguments of one call, V3(draw(), draw(), draw()), are taken in
 /// the order the compiler evaluates arguments, which g++ and clang do not share: one seed

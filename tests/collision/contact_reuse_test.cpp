@@ -21,7 +21,7 @@ using V3 = Eigen::Vector3d;
 
 Eigen::Matrix3d randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> g;
-  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  return test::drawnQuaternion([&] { return g(rng); }).normalized().toRotationMatrix();
 }
 
 // A rigid motion of size `size`: a translation of length `size` or a turn moving no

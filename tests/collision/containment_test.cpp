@@ -130,10 +130,11 @@ TEST(Containment, SeededPlacementsAgreeWithTheAnalyticInside) {
   int inside = 0, outside = 0;
   for (const Outer& o : outers)
     for (int k = 0; k < 400; ++k) {
-      const V3 p = o.around.min() + (o.around.max() - o.around.min()).cwiseProduct(V3(unit(rng), unit(rng), unit(rng)));
+      const V3 p = o.around.min() + (o.around.max() - o.around.min()).cwiseProduct(test::drawnVector([&] { return unit(rng); }));
       const double d = o.depth(p);
       if (std::abs(d) < reach) continue;
-      const Eigen::Quaterniond q = Eigen::Quaterniond(unit(rng), unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5).normalized();
+      const Eigen::Quaterniond drawn = test::drawnQuaternion([&] { return unit(rng); });
+      const Eigen::Quaterniond q = Eigen::Quaterniond(drawn.w(), drawn.x() - 0.5, drawn.y() - 0.5, drawn.z() - 0.5).normalized();
       const PairResult r = pairOf(small, at(p, q), o.mesh, at(V3(0, 0, 0)), test::worldFrames()[2].X, k % 2 == 0);
       EXPECT_EQ(r.status, d > 0 ? Status::Interpenetrating : Status::Separate) << "at " << p.transpose();
       (d > 0 ? inside : outside) += 1;

@@ -100,9 +100,11 @@ void expectAgreementOnRandomPoses(const MeshData& other, unsigned seed) {
   std::uniform_real_distribution<double> distance(0.3, 1.6);
   int apart = 0, overlapping = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    const auto rotation = [&] { return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix(); };
-    const ObjectDatabase db = pairAt(makeBox(V3(1, 0.6, 0.8)), pose(V3::Zero(), rotation()), other,
-                                     pose(distance(rng) * V3(g(rng), g(rng), g(rng)).normalized(), rotation()));
+    const auto rotation = [&] { return test::drawnQuaternion([&] { return g(rng); }).normalized().toRotationMatrix(); };
+    const Eigen::Matrix3d first = rotation();
+    const double apartBy = distance(rng);
+    const V3 direction = test::drawnVector([&] { return g(rng); }).normalized();
+    const ObjectDatabase db = pairAt(makeBox(V3(1, 0.6, 0.8)), pose(V3::Zero(), first), other, pose(apartBy * direction, rotation()));
     const double s = *convexSeparation(db.objects[0], db.objects[1]);
     const Status status = test4Intersection(db).status;
     if (s > db.tolerance) {

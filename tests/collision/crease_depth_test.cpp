@@ -188,8 +188,8 @@ TEST(CreaseDepth, EdgePassingBeyondARimEdgesEndIsNoCrossing) {
     t.x() = kInner + g - (R * V3(kHalf, -kInner - y, 0.0)).x();  // the +x bottom edge, where it passes y = -kInner
     // Both cups carried into a random frame: the round-off, not the geometry, changes.
     std::normal_distribution<double> normal;
-    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const Eigen::Isometry3d frame = placed(q.normalized().toRotationMatrix(), V3(normal(rng), normal(rng), normal(rng)));
+    const Eigen::Quaterniond q = test::drawnQuaternion([&] { return normal(rng); });
+    const Eigen::Isometry3d frame = placed(q.normalized().toRotationMatrix(), test::drawnVector([&] { return normal(rng); }));
     ObjectDatabase db;
     db.tolerance = kEps;
     db.add("lower", cup(), frame, false);
@@ -228,8 +228,9 @@ TEST(CreaseDepth, DeepestInTheWedgeIsTheDeepestPointOfThePolygon) {
   std::mt19937 rng(20261130);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   auto randomRotation = [&] {
-    return Eigen::Quaterniond(V3(unit(rng), unit(rng), unit(rng)).normalized().x(), unit(rng) - 0.5,
-                              unit(rng) - 0.5, unit(rng) - 0.5).normalized().toRotationMatrix();
+    const double w = test::drawnVector([&] { return unit(rng); }).normalized().x();
+    const V3 xyz = test::drawnVector([&] { return unit(rng); }) - V3::Constant(0.5);
+    return Eigen::Quaterniond(w, xyz.x(), xyz.y(), xyz.z()).normalized().toRotationMatrix();
   };
   int deeperThanZero = 0;
   for (const auto& [mesh, face] : {std::pair{&box, 0}, std::pair{&box, 3}, std::pair{&cupMesh, 3},
@@ -237,7 +238,8 @@ TEST(CreaseDepth, DeepestInTheWedgeIsTheDeepestPointOfThePolygon) {
     for (int trial = 0; trial < 200; ++trial) {
       SCOPED_TRACE("face " + std::to_string(face) + ", trial " + std::to_string(trial));
       ObjectDatabase db;
-      db.add("object", std::make_shared<PolygonMesh>(*mesh), placed(randomRotation(), V3(unit(rng), unit(rng), unit(rng))), false);
+      const Eigen::Matrix3d R = randomRotation();
+      db.add("object", std::make_shared<PolygonMesh>(*mesh), placed(R, test::drawnVector([&] { return unit(rng); })), false);
       const ObjNode& object = db.objects[0];
       WorldFaces faces;
       faces.reset(object);

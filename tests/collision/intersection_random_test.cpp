@@ -45,7 +45,7 @@ PairResult bruteForce(const ObjectDatabase& db, bool withGeometry = false) {
 
 Eigen::Matrix3d randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> g;
-  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  return test::drawnQuaternion([&] { return g(rng); }).normalized().toRotationMatrix();
 }
 
 TEST(IntersectionRandom, BroadStepsLoseNothingAgainstAllPolygonPairs) {
@@ -63,7 +63,8 @@ TEST(IntersectionRandom, BroadStepsLoseNothingAgainstAllPolygonPairs) {
     const V3 direction = V3::Random().normalized();
     const double scale = 0.5 * (meshA->bounds().sizes().norm() + meshB->bounds().sizes().norm()) / 2;
     db.add("A", meshA, test::pose(V3::Zero(), randomRotation(rng)), false);
-    db.add("B", meshB, test::pose(distance(rng) * scale * direction, randomRotation(rng)), false);
+    const double apart = distance(rng) * scale;
+    db.add("B", meshB, test::pose(apart * direction, randomRotation(rng)), false);
     const IntersectionResult fast = test4Intersection(db);
     const PairResult slow = bruteForce(db);
     ASSERT_EQ(toString(fast.status), toString(slow.status)) << "trial " << trial;
@@ -110,7 +111,7 @@ TEST(IntersectionRandom, RestingBoxesGiveTheContactsOfAllPolygonPairs) {
   const auto block = std::make_shared<PolygonMesh>(makeBox(V3(2, 2, 1)));
   int areas = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const V3 size(0.6 + 0.3 * u(rng), 0.6 + 0.3 * u(rng), 0.5 + 0.2 * u(rng));
+    const V3 size = V3(0.6, 0.6, 0.5) + test::drawnVector([&] { return u(rng); }).cwiseProduct(V3(0.3, 0.3, 0.2));
     const auto box = std::make_shared<PolygonMesh>(makeBox(size));
     const Eigen::Matrix3d yaw = Eigen::AngleAxisd(M_PI * u(rng), V3::UnitZ()).toRotationMatrix();
     const int tilt = trial % 3;  // 0 flat, 1 on an edge, 2 on a corner
@@ -124,7 +125,8 @@ TEST(IntersectionRandom, RestingBoxesGiveTheContactsOfAllPolygonPairs) {
     const double top = onBlock ? 0.5 : 0.0;
     const double reach = onBlock ? 1.2 : 2.5;  // the block's half width plus some overhang
     ObjectDatabase db;
-    db.add("box", box, test::pose(V3(reach * u(rng), reach * u(rng), top - lowest - 0.25 * db.tolerance), R), false);
+    const double x = reach * u(rng), y = reach * u(rng);
+    db.add("box", box, test::pose(V3(x, y, top - lowest - 0.25 * db.tolerance), R), false);
     if (onBlock) db.add("block", block, test::pose(V3::Zero()), true);
     else db.add("floor", floor, test::pose(V3::Zero()), true);
     const IntersectionResult fast = test4Intersection(db);
@@ -163,7 +165,7 @@ TEST(IntersectionRandom, EveryOverlapInTheBandIsReportedAtItsDepth) {
   for (int trial = 0; trial < 600; ++trial) {
     auto shape = [&]() -> std::shared_ptr<PolygonMesh> {
       if (u(rng) < 0.25) return staple;
-      return std::make_shared<PolygonMesh>(makeBox(V3(0.2 + 2 * u(rng), 0.2 + 2 * u(rng), 0.2 + 2 * u(rng))));
+      return std::make_shared<PolygonMesh>(makeBox(V3::Constant(0.2) + 2 * test::drawnVector([&] { return u(rng); })));
     };
     const auto meshA = shape(), meshB = shape();
     const Eigen::Matrix3d RA = randomRotation(rng), RB = randomRotation(rng);
@@ -215,7 +217,7 @@ TEST(IntersectionRandom, SweepAndPruneFindsEveryOverlappingPairOfBoxes) {
     std::vector<Eigen::AlignedBox3d> boxes;
     for (int i = 0; i < 150; ++i) {
       db.add("b", box, Eigen::Isometry3d::Identity(), i % 7 == 0);
-      const V3 c(centre(rng), centre(rng), centre(rng)), half(size(rng), size(rng), size(rng));
+      const V3 c = test::drawnVector([&] { return centre(rng); }), half = test::drawnVector([&] { return size(rng); });
       boxes.emplace_back(c - half, c + half);
       if (i % 37 == 5) boxes.back() = grow(boxes.back(), std::numeric_limits<double>::infinity());
     }

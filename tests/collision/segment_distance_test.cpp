@@ -8,6 +8,8 @@
 #include <limits>
 #include <random>
 
+#include "tests/test_support.h"
+
 namespace polysim::collision {
 namespace {
 
@@ -20,7 +22,7 @@ using V3 = Eigen::Vector3d;
 TEST(SegmentDistance, ParametersGiveThePointsAndEndsAreExact) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  auto random = [&]() -> V3 { return V3(unit(rng), unit(rng), unit(rng)); };
+  auto random = [&]() -> V3 { return test::drawnVector([&] { return unit(rng); }); };
   int atAnEnd = 0, inside = 0;
   for (int trial = 0; trial < 200; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));

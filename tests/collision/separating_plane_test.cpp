@@ -52,7 +52,7 @@ TEST(ConvexMesh, ExtremeVertexMatchesAScanOfEveryVertex) {
   for (const MeshData& data : {makeIcosphere(1.0, 4), makeBox(V3(1, 2, 3)), test::makeHexPrism(1.0, 0.5)}) {
     const PolygonMesh mesh(data);
     for (int trial = 0; trial < 300; ++trial) {
-      const V3 d(g(rng), g(rng), g(rng));
+      const V3 d = test::drawnVector([&] { return g(rng); });
       double best = -1e300;
       for (const V3& v : mesh.vertices()) best = std::max(best, d.dot(v));
       EXPECT_DOUBLE_EQ(d.dot(mesh.vertices()[mesh.extremeVertex(d)]), best) << "direction " << d.transpose();
@@ -105,9 +105,11 @@ TEST(SeparatingPlane, NeverClaimsApartWhatAScanOfVerticesDenies) {
   const MeshData staple = test::makeStaple(), cup = test::makeCup(1.0, 1.5, 0.2, 0.2);
   int apart = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    const auto rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
-    const ObjectDatabase db = pairAt(staple, trial % 2 ? cup : staple, test::pose(V3::Zero()),
-                                     test::pose(distance(rng) * V3(g(rng), g(rng), g(rng)).normalized(), rotation));
+    const auto rotation = test::drawnQuaternion([&] { return g(rng); }).normalized().toRotationMatrix();
+    const double apartBy = distance(rng);
+    const V3 direction = test::drawnVector([&] { return g(rng); }).normalized();
+    const ObjectDatabase db =
+        pairAt(staple, trial % 2 ? cup : staple, test::pose(V3::Zero()), test::pose(apartBy * direction, rotation));
     const ObjNode &a = db.objects[0], &b = db.objects[1];
     if (!separatedAlongCentreLine(a, b, kDefaultContactTolerance)) continue;
     ++apart;
@@ -142,7 +144,7 @@ TEST(SeparatingPlane, BranchAndBoundTopIsAVertexWithinTheSlackOfTheScannedTop) {
   std::mt19937 rng(5);
   std::normal_distribution<double> g;
   for (int trial = 0; trial < 300; ++trial) {
-    const V3 d = V3(g(rng), g(rng), g(rng)).normalized();
+    const V3 d = test::drawnVector([&] { return g(rng); }).normalized();
     const double top = scannedTop(spheres, d);
     for (double slack : {0.0, 0.01, 0.3}) {
       const double level = topLevelAlong(spheres, d, slack, -std::numeric_limits<double>::infinity());
@@ -170,8 +172,8 @@ TEST(SeparatingPlane, NonConvexMeshWithAVoxelTreeIsNeverClaimedApartWhenItOverla
   std::uniform_real_distribution<double> gap(-0.03, 0.05);  // < 0: overlapping
   int apart = 0, overlappingTried = 0;
   for (int trial = 0; trial < 600; ++trial) {
-    const V3 d = V3(g(rng), g(rng), g(rng)).normalized();
-    const auto rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    const V3 d = test::drawnVector([&] { return g(rng); }).normalized();
+    const auto rotation = test::drawnQuaternion([&] { return g(rng); }).normalized().toRotationMatrix();
     const double top = scannedTop(a, d) - d.dot(centre);              // the spheres' reach along d
     const double reach = 0.25 * (rotation.transpose() * d).cwiseAbs().sum();  // the box's, towards them
     const double wanted = gap(rng);

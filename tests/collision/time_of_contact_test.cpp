@@ -252,12 +252,14 @@ TEST_P(TimeOfContact, NeverReturnsAnInterpenetratingStateOnRandomMotions) {
   for (int trial = 0; trial < 150; ++trial) {
     TocWorld w;
     w.addStatic(kSlab, kSlabPose);
-    const V3 start(u(rng), u(rng), 1.2 + 0.5 * u(rng));
-    const Eigen::Matrix3d R = Eigen::Quaterniond(V3(u(rng), u(rng), u(rng)).normalized().x(), u(rng), u(rng), u(rng))
-                                  .normalized()
-                                  .toRotationMatrix();
-    w.addMoving(makeBox(V3(0.7, 0.5, 0.3)), pose(start, R), V3(u(rng), u(rng), -1.5 + u(rng)),
-                V3(u(rng), u(rng), u(rng)) * 3);
+    const auto draw = [&] { return u(rng); };
+    const V3 drawnStart = test::drawnVector(draw);
+    const V3 start(drawnStart.x(), drawnStart.y(), 1.2 + 0.5 * drawnStart.z());
+    const double w0 = test::drawnVector(draw).normalized().x();
+    const V3 xyz = test::drawnVector(draw);
+    const Eigen::Matrix3d R = Eigen::Quaterniond(w0, xyz.x(), xyz.y(), xyz.z()).normalized().toRotationMatrix();
+    const V3 velocity = test::drawnVector(draw) + V3(0, 0, -1.5);
+    w.addMoving(makeBox(V3(0.7, 0.5, 0.3)), pose(start, R), velocity, test::drawnVector(draw) * 3);
     w.addMoving(makeBox(V3(0.4, 0.4, 0.4)), pose(start + V3(0.9, 0, 0.4)), V3(-u(rng) - 1, 0, -1.5), V3::Zero());
     TocResult r;
     try {

@@ -40,16 +40,19 @@ void buildScene(TocWorld& w, unsigned seed) {
   std::vector<V3> tops;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      const V3 size(0.4 + 0.6 * unit(rng), 0.4 + 0.6 * unit(rng), 0.3 + 0.5 * unit(rng));
+      // Each draw in a statement of its own (test::drawnVector): a call's arguments are
+      // evaluated in an order the compilers do not share.
+      const V3 size = V3(0.4, 0.4, 0.3) + test::drawnVector([&] { return unit(rng); }).cwiseProduct(V3(0.6, 0.6, 0.5));
       const V3 centre(1.5 * (i - 1.5), 1.5 * (j - 1.5), 0.5 * size.z() - 0.25 * kEps * unit(rng));
       const double sink = i == 1 && j == 2 ? 2 * kEps : 0.5 * kEps;  // one can sink in
-      const V3 drift(2 * kEps * u(rng), 2 * kEps * u(rng), -sink * unit(rng));
+      const double driftX = 2 * kEps * u(rng), driftY = 2 * kEps * u(rng), driftZ = -sink * unit(rng);
+      const V3 drift(driftX, driftY, driftZ);
       w.addMoving(makeBox(size), pose(centre), drift);
       V3 top = centre + V3(0, 0, 0.5 * size.z());
       if ((i + j) % 2 == 0) {
         const double h = 0.2 + 0.3 * unit(rng);
-        w.addMoving(makeBox(V3(0.3, 0.3, h)), pose(top + V3(0, 0, 0.5 * h - 0.25 * kEps * unit(rng))),
-                    drift + V3(0, 0, -0.5 * kEps * unit(rng)));
+        const double sunk = 0.25 * kEps * unit(rng), sinking = 0.5 * kEps * unit(rng);
+        w.addMoving(makeBox(V3(0.3, 0.3, h)), pose(top + V3(0, 0, 0.5 * h - sunk)), drift + V3(0, 0, -sinking));
         top.z() += h;
       }
       tops.push_back(top);
@@ -60,11 +63,13 @@ void buildScene(TocWorld& w, unsigned seed) {
     while (std::find(used.begin(), used.end(), pick) != used.end()) pick = (pick + 1) % static_cast<int>(tops.size());
     used.push_back(pick);
     const V3& below = tops[static_cast<size_t>(pick)];
-    const Eigen::Matrix3d R = test::rot(0.3 * unit(rng), V3(u(rng), u(rng), u(rng)));
+    const double angle = 0.3 * unit(rng);
+    const Eigen::Matrix3d R = test::rot(angle, test::drawnVector([&] { return u(rng); }));
     // Its lowest point 1 to 20 cm above the top below it; falling 5 to 30 cm over the interval.
-    const V3 centre(below.x() + 0.1 * u(rng), below.y() + 0.1 * u(rng), below.z() + 0.47 + 0.01 + 0.19 * unit(rng));
-    w.addMoving(makeBox(V3(0.5, 0.5, 0.5)), pose(centre, R), V3(0.02 * u(rng), 0.02 * u(rng), -(0.05 + 0.25 * unit(rng))),
-                V3(0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)));
+    const double x = below.x() + 0.1 * u(rng), y = below.y() + 0.1 * u(rng), z = below.z() + 0.47 + 0.01 + 0.19 * unit(rng);
+    const double vx = 0.02 * u(rng), vy = 0.02 * u(rng), vz = -(0.05 + 0.25 * unit(rng));
+    w.addMoving(makeBox(V3(0.5, 0.5, 0.5)), pose(V3(x, y, z), R), V3(vx, vy, vz),
+                0.3 * test::drawnVector([&] { return u(rng); }));
   }
 }
 

@@ -90,17 +90,24 @@ TEST(WatchedPairsRandom, APairLeftUnwatchedNeverInterpenetratesInTheInterval) {
     TocWorld w;
     w.addStatic(kSlab, kSlabPose);
     const int shape = trial % 5;
-    const MeshData mesh = shape == 4   ? test::makeCup(0.5, 0.6, 0.08, 0.1)
-                          : shape == 3 ? test::makeHexPrism(0.3 + 0.4 * unit(rng), 0.2 + 0.8 * unit(rng))
-                                       : makeBox(V3(0.2 + unit(rng), 0.2 + unit(rng), 0.2 + unit(rng)));
-    const Eigen::Matrix3d R = test::rot(0.6 * unit(rng), V3(u(rng), u(rng), u(rng)));
+    const auto mesh = [&]() -> MeshData {
+      if (shape == 4) return test::makeCup(0.5, 0.6, 0.08, 0.1);
+      if (shape == 3) {
+        const double across = 0.3 + 0.4 * unit(rng), height = 0.2 + 0.8 * unit(rng);
+        return test::makeHexPrism(across, height);
+      }
+      return makeBox(V3::Constant(0.2) + test::drawnVector([&] { return unit(rng); }));
+    }();
+    const double angle = 0.6 * unit(rng);
+    const Eigen::Matrix3d R = test::rot(angle, test::drawnVector([&] { return u(rng); }));
     double lowest = 0.0;
     for (const V3& v : mesh.vertices) lowest = std::min(lowest, (R * v).z());
     const double gap = -0.95 * kEps + 3.95 * kEps * unit(rng);
     const double motion = kEps * std::pow(10.0, -2.0 + 3.0 * unit(rng));  // 0.01 to 10 eps
     // Split the motion between a translation and a turn at random; the bound holds both.
-    const V3 v = V3(u(rng), u(rng), -unit(rng)).normalized() * motion * unit(rng);
-    const V3 spin = V3(u(rng), u(rng), u(rng)).normalized() * (motion - v.norm()) / 1.5;  // farthest vertex < 1.5 m
+    const double vx = u(rng), vy = u(rng), vz = -unit(rng);
+    const V3 v = V3(vx, vy, vz).normalized() * motion * unit(rng);
+    const V3 spin = test::drawnVector([&] { return u(rng); }).normalized() * (motion - v.norm()) / 1.5;  // farthest vertex < 1.5 m
     const int body = w.addMoving(mesh, pose(V3(0, 0, gap - lowest), R), v, spin);
     ASSERT_LE(w.db.objects[body].motionBound, 1.01 * motion);
     w.db.setTime(1.0);

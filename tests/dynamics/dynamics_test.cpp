@@ -144,10 +144,11 @@ std::vector<RigidBody> randomPair(std::mt19937& rng, int trial, double spin) {
   if (trial % 3 == 0) bodies[1] = RigidBody::fixed();
   for (RigidBody& b : bodies) {
     if (b.isStatic) continue;
-    b.position = V3(u(rng), u(rng), u(rng));
-    b.orientation = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
-    b.velocity = 3 * V3(u(rng), u(rng), u(rng));
-    b.angularVelocity = spin * V3(u(rng), u(rng), u(rng));
+    const auto draw = [&] { return u(rng); };
+    b.position = test::drawnVector(draw);
+    b.orientation = test::drawnQuaternion(draw).normalized();
+    b.velocity = 3 * test::drawnVector(draw);
+    b.angularVelocity = spin * test::drawnVector(draw);
   }
   return bodies;
 }
@@ -159,8 +160,8 @@ struct Plane {
 Plane randomPlane(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1, 1);
   Plane p;
-  p.normal = V3(u(rng), u(rng), u(rng)).normalized();
-  p.centre = V3(u(rng), u(rng), u(rng));
+  p.normal = test::drawnVector([&] { return u(rng); }).normalized();
+  p.centre = test::drawnVector([&] { return u(rng); });
   p.t1 = p.normal.unitOrthogonal();
   p.t2 = p.normal.cross(p.t1);
   return p;
@@ -178,8 +179,10 @@ TEST(ContactSolver, KineticEnergyNeverIncreasesOnRandomContacts) {
     const auto [normal, centre, t1, t2] = randomPlane(rng);
     const double e = 0.5 * (u(rng) + 1), mu = 0.5 * (u(rng) + 1);
     const int n = 1 + trial % 4;
-    for (int k = 0; k < n; ++k)
-      contacts.push_back({0, 1, centre + 0.5 * u(rng) * t1 + 0.5 * u(rng) * t2, normal, 0.0, e, mu});
+    for (int k = 0; k < n; ++k) {
+      const double s = 0.5 * u(rng), t = 0.5 * u(rng);
+      contacts.push_back({0, 1, centre + s * t1 + t * t2, normal, 0.0, e, mu});
+    }
     const double before = bodies[0].kineticEnergy() + bodies[1].kineticEnergy();
     solveContacts(bodies, contacts, 1.0 / 240);
     const double after = bodies[0].kineticEnergy() + bodies[1].kineticEnergy();
@@ -204,7 +207,8 @@ TEST(ContactSolver, KineticEnergyNeverIncreasesWhenTurningBodiesCurveTheirGapsCl
     const double mu = trial % 2 == 0 ? 0.0 : 0.5 * (u(rng) + 1);
     const double turnWithA = 0.5 * (trial % 3);
     for (int k = 0; k < 1 + trial % 4; ++k) {
-      ContactPoint c{0, 1, centre + 0.5 * u(rng) * t1 + 0.5 * u(rng) * t2, normal, 1e-4 * u(rng), 0.0, mu, 0};
+      const double s = 0.5 * u(rng), t = 0.5 * u(rng);
+      ContactPoint c{0, 1, centre + s * t1 + t * t2, normal, 1e-4 * u(rng), 0.0, mu, 0};
       c.normalTurnWithA = turnWithA;
       contacts.push_back(c);
     }

@@ -13,6 +13,7 @@
 #include "collision/shapes.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/integrator.h"
+#include "tests/test_support.h"
 
 namespace polysim::dynamics {
 namespace {
@@ -87,7 +88,7 @@ TEST(GapCurvature, CrossingEdgesEndTheStepCrossing) {
   const double bound = 300 * std::pow(dt, 3);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  auto random = [&](double size) -> V3 { return size * V3(uniform(rng), uniform(rng), uniform(rng)); };
+  auto random = [&](double size) -> V3 { return size * test::drawnVector([&] { return uniform(rng); }); };
   int closing = 0;
   for (int trial = 0; trial < 300; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));

@@ -10,11 +10,18 @@
 #include "dynamics/contact_solver.h"
 #include "dynamics/mass_properties.h"
 #include "dynamics/settings.h"
+#include "tests/test_support.h"
 
 namespace polysim::dynamics {
 namespace {
 
 using V3 = Eigen::Vector3d;
+
+// A random vector in the horizontal plane, x drawn before y (test::drawnVector says why).
+V3 drawnInPlane(std::uniform_real_distribution<double>& u, std::mt19937& rng) {
+  const double x = u(rng);
+  return V3(x, u(rng), 0);
+}
 constexpr double kDt = 1.0 / 60;
 constexpr double g = 9.81;
 
@@ -87,11 +94,11 @@ TEST(SolverStages, AWarmStartTheStepDoesNotNeedAddsNoEnergy) {
   for (int trial = 0; trial < 300; ++trial) {
     const int count = 2 + trial % 5;
     std::vector<RigidBody> bodies = stackOfBoxes(count);
-    for (size_t k = 1; k < bodies.size(); ++k) bodies[k].velocity += V3(u(rng), u(rng), u(rng)), bodies[k].angularVelocity = V3(u(rng), u(rng), u(rng));
+    for (size_t k = 1; k < bodies.size(); ++k) bodies[k].velocity += test::drawnVector([&] { return u(rng); }), bodies[k].angularVelocity = test::drawnVector([&] { return u(rng); });
     std::vector<ContactPoint> contacts = stackContacts(count, V3::UnitZ(), 0.5 * (1 + u(rng)));
     for (ContactPoint& c : contacts) {
       c.normalImpulse = 10 * (1 + u(rng));
-      c.frictionImpulse = 0.5 * c.friction * c.normalImpulse * V3(u(rng), u(rng), 0);
+      c.frictionImpulse = 0.5 * c.friction * c.normalImpulse * drawnInPlane(u, rng);
     }
     const double before = kineticEnergy(bodies);
     solveContacts(bodies, contacts, kDt, 0.0, 1 + trial % 3);
@@ -115,7 +122,7 @@ TEST(SolverStages, ShockPropagationSettlesASwayingStackInTwentySweeps) {
     const int count = 12;
     std::vector<RigidBody> bodies = stackOfBoxes(count);
     for (size_t k = 1; k < bodies.size(); ++k)
-      bodies[k].velocity += 0.05 * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = 0.05 * V3(u(rng), u(rng), u(rng));
+      bodies[k].velocity += 0.05 * drawnInPlane(u, rng), bodies[k].angularVelocity = 0.05 * test::drawnVector([&] { return u(rng); });
     std::vector<ContactPoint> contacts = stackContacts(count, V3::UnitZ(), 0.8);
     const SolveStats stats = solveContacts(bodies, contacts, kDt, 0.0, 20);
     EXPECT_FALSE(stats.converged);
@@ -143,7 +150,7 @@ TEST(SolverStages, ShockPropagationRanksByWhatHoldsABodyUpNotByAWallItLeansOn) {
     std::vector<RigidBody> bodies = stackOfBoxes(count);
     bodies.push_back(RigidBody::fixed());
     for (int k = 1; k <= count; ++k)
-      bodies[k].velocity += 0.05 * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = 0.05 * V3(u(rng), u(rng), u(rng));
+      bodies[k].velocity += 0.05 * drawnInPlane(u, rng), bodies[k].angularVelocity = 0.05 * test::drawnVector([&] { return u(rng); });
     std::vector<ContactPoint> contacts = stackContacts(count, V3::UnitZ(), 0.8);
     for (double z : {count - 1.0, count - 0.0})  // the top box's side at x = 0.5 on the wall
       contacts.push_back({count, wall, V3(0.5, 0.0, z), -V3::UnitX(), 0.0, 0.0, 0.8, -1});
@@ -167,7 +174,7 @@ TEST(SolverStages, OnlyASettlingGroupSweepsPastTheMovingLimit) {
     for (double sway : {0.2 * kSettlingSpeed, 20 * kSettlingSpeed}) {
       std::vector<RigidBody> bodies = stackOfBoxes(12);
       for (size_t k = 1; k < bodies.size(); ++k)
-        bodies[k].velocity += sway * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = sway * V3(u(rng), u(rng), u(rng));
+        bodies[k].velocity += sway * drawnInPlane(u, rng), bodies[k].angularVelocity = sway * test::drawnVector([&] { return u(rng); });
       std::vector<RigidBody> again = bodies;
       std::vector<ContactPoint> contacts = stackContacts(12, V3::UnitZ(), 0.8), same = contacts;
       const SolveStats stats = solveContacts(bodies, contacts, kDt, 0.0, kSettlingSolverSweeps, V3::UnitZ());
@@ -194,7 +201,7 @@ TEST(SolverStages, ARestingGroupWithFrictionStopsAtTheMovingLimit) {
       std::vector<RigidBody> bodies = stackOfBoxes(12);
       for (size_t k = 1; k < bodies.size(); ++k) {
         const double sway = 0.2 * kSettlingSpeed;
-        bodies[k].velocity += sway * V3(u(rng), u(rng), 0), bodies[k].angularVelocity = sway * V3(u(rng), u(rng), u(rng));
+        bodies[k].velocity += sway * drawnInPlane(u, rng), bodies[k].angularVelocity = sway * test::drawnVector([&] { return u(rng); });
         bodies[k].restedAfterLastSolve = true;
       }
       std::vector<ContactPoint> contacts = stackContacts(12, V3::UnitZ(), mu);
@@ -227,7 +234,7 @@ TEST(SolverStages, ShockPropagationAddsNoEnergy) {
   for (int trial = 0; trial < 300; ++trial) {
     const int count = 2 + trial % 5;
     std::vector<RigidBody> bodies = stackOfBoxes(count);
-    for (size_t k = 1; k < bodies.size(); ++k) bodies[k].velocity = 2 * V3(u(rng), u(rng), u(rng)), bodies[k].angularVelocity = 2 * V3(u(rng), u(rng), u(rng));
+    for (size_t k = 1; k < bodies.size(); ++k) bodies[k].velocity = 2 * test::drawnVector([&] { return u(rng); }), bodies[k].angularVelocity = 2 * test::drawnVector([&] { return u(rng); });
     std::vector<ContactPoint> contacts = stackContacts(count, V3::UnitZ(), 0.5 * (1 + u(rng)));
     const double before = kineticEnergy(bodies);
     const SolveStats stats = solveContacts(bodies, contacts, kDt, 0.0, 2);

@@ -249,10 +249,10 @@ TEST(Scenarios, ScatteredRandomDropsSettleWithinTheEnergyBound) {
     for (int k = 0; k < 9; ++k) {
       BodySpec b = box;
       b.name = "box" + std::to_string(k);
-      const V3 axis = V3(unit(rng), unit(rng), unit(rng)).normalized();
+      const V3 axis = polysim::test::drawnVector([&] { return unit(rng); }).normalized();
       b.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3 * (1 + unit(rng)), axis));
       b.position = V3(3.0 * (k % 3 - 1), 3.0 * (k / 3 - 1), 2.0 + unit(rng));
-      b.angularVelocity = V3(unit(rng), unit(rng), unit(rng));
+      b.angularVelocity = polysim::test::drawnVector([&] { return unit(rng); });
       s.bodies.push_back(b);
     }
     World w(s);
