@@ -16,25 +16,24 @@ namespace polysim::collision::toc {
 
 IntersectionResult Search::statusAt(double t, bool contacts) {
   db.setTime(t);
-  ++tests;
-  IntersectionOptions options;
-  options.contacts = contacts;
   // No other pair comes within the tolerance in the interval; of those, only the watched
   // can interpenetrate, and a verdict wants nothing else.
-  options.onlyPairs = contacts ? &meeting : narrowed ? &inBracket : &watched;
-  pairTests += static_cast<long>(options.onlyPairs->size());
-  return test4Intersection(db, ws, options);
+  return testPairs(contacts ? meeting : narrowed ? inBracket : watched, contacts);
 }
 
 IntersectionResult Search::statusOfPairsAt(const PairIds& ids, double t) {
   for (const auto& [a, b] : ids)
     for (int i : {a, b})
       if (ObjNode& o = db.objects[i]; o.ctrans) o.ctrans(t, o.info, o.X_WO);
+  return testPairs(ids, false);
+}
+
+IntersectionResult Search::testPairs(const PairIds& ids, bool contacts) {
   ++tests;
-  IntersectionOptions options;
-  options.contacts = false;
-  options.onlyPairs = &ids;
   pairTests += static_cast<long>(ids.size());
+  IntersectionOptions options;
+  options.contacts = contacts;
+  options.onlyPairs = &ids;
   return test4Intersection(db, ws, options);
 }
 

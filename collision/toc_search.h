@@ -50,6 +50,10 @@ struct Search {
   /// The status at time t of the pairs `ids` alone (no contacts): only their objects are
   /// moved to t, the others stay where they were.
   IntersectionResult statusOfPairsAt(const PairIds& ids, double t);
+
+ private:
+  /// test4Intersection() of the pairs `ids` at the objects' current poses, counted.
+  IntersectionResult testPairs(const PairIds& ids, bool contacts);
 };
 
 PairIds interpenetratingPairs(const IntersectionResult& r);
