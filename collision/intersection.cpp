@@ -42,6 +42,9 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
     result.status = Status::Contact;
     return result;
   }
+  // Apart by a separating axis, so not interpenetrating: within the tolerance or not,
+  // only the polygons would tell.
+  if (separation && !options.contacts && !options.tellContactFromApart) return result;
   const DepthVerdict verdict = separation ? DepthVerdict::DecidedByCaller : DepthVerdict::Judged;
 
   if (ws.faces.size() < db.objects.size()) ws.faces.resize(db.objects.size());

@@ -21,6 +21,13 @@ struct IntersectionOptions {
   /// Return as soon as one pair interpenetrates (its depth is then a lower bound), for
   /// callers that only need the verdict, such as collisionDetect()'s bisection.
   bool stopAtInterpenetration = false;
+  /// Without contacts, whether a pair that cannot interpenetrate is told in contact from
+  /// apart. Off: two convex objects that the separating axis test finds apart, by no more
+  /// than the tolerance, are reported separate without their polygons' test, though they
+  /// may be within the tolerance (in contact); for callers that want only which pairs
+  /// interpenetrate, such as collisionDetect()'s scan. A settling pile's pairs sit there
+  /// by the thousand: 30% of a landing pile's verdicts went to the polygons for it.
+  bool tellContactFromApart = true;
   /// When set, only these pairs of objects (i < j each, sorted) are tested, in place of
   /// the sweep and prune over all objects: the caller promises that no other pair is
   /// within the tolerance (collisionDetect() gives the pairs that can meet in its

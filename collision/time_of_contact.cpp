@@ -52,16 +52,15 @@ double pairMotion(const ObjectDatabase& db, const PairIds& ids) {
   return motion;
 }
 
-// The seed's scan: the full test at the end of each sub-interval in order, until one
-// interpenetrates. Keeps the last state that did not, the bracket's start (none when
-// the bracket starts at t = 0).
-std::optional<Bracket> scanByTests(Search& s, int subintervals, std::optional<IntersectionResult>& atStart) {
+// The seed's scan: the test at the end of each sub-interval in order, until one
+// interpenetrates. It tells only interpenetration (Search::interpenetrationAt): which
+// pairs already touch at the bracket's start is startBracket()'s to find.
+std::optional<Bracket> scanByTests(Search& s, int subintervals) {
   for (int k = 1; k <= subintervals; ++k) {
     const double t = static_cast<double>(k) / subintervals;
-    IntersectionResult r = s.statusAt(t);
+    const IntersectionResult r = s.interpenetrationAt(t);
     if (r.status == Status::Interpenetrating)
       return Bracket{static_cast<double>(k - 1) / subintervals, t, interpenetratingPairs(r)};
-    atStart = std::move(r);
   }
   return std::nullopt;
 }
@@ -92,7 +91,7 @@ std::optional<Bracket> scanBySeparation(Search& s, int subintervals) {
     }
     s.separations += measured;
     if (unsure) {
-      const IntersectionResult r = s.statusAt(t);
+      const IntersectionResult r = s.interpenetrationAt(t);
       if (r.status == Status::Interpenetrating) return Bracket{lo, t, interpenetratingPairs(r)};
     } else if (!br.hiPairs.empty()) {
       br.atHi = least;
@@ -103,10 +102,11 @@ std::optional<Bracket> scanBySeparation(Search& s, int subintervals) {
 }
 
 // Fills in what the root finders need to know about the bracket's start: whether its
-// pairs already touch there (Bracket::fresh), and that nothing interpenetrates at t = 0.
-// From the scan's last state when it kept one; measured by the separating axis test when
-// that scanned (only a pair within the tolerance then needs the full test).
-void startBracket(Search& s, Bracket& br, bool byAxes, std::optional<IntersectionResult> atStart) {
+// pairs already touch there (Bracket::fresh, by their own test), and that nothing
+// interpenetrates at t = 0 (a later start is a time the scan found clean). Measured by
+// the separating axis test when that scanned (only a pair within the tolerance then
+// needs the full test).
+void startBracket(Search& s, Bracket& br, bool byAxes) {
   br.motion = pairMotion(s.db, br.hiPairs);
   if (byAxes) {
     s.db.setTime(br.lo);
@@ -115,11 +115,11 @@ void startBracket(Search& s, Bracket& br, bool byAxes, std::optional<Intersectio
     const double least = br.lo == 0.0 ? signedSeparation(s, s.meeting, reach).value : br.atLo->value;
     if (least > s.db.tolerance) return;  // nothing touches, nothing interpenetrates
   }
-  if (!atStart) {
-    atStart = s.statusAt(br.lo);
-    if (br.lo == 0.0 && atStart->status == Status::Interpenetrating) reportInitialInterpenetration(s.db, *atStart);
+  if (br.lo == 0.0) {
+    const IntersectionResult r = s.interpenetrationAt(0.0);
+    if (r.status == Status::Interpenetrating) reportInitialInterpenetration(s.db, r);
   }
-  br.fresh = noneInContact(*atStart, br.hiPairs);
+  br.fresh = noneInContact(s.statusOfPairsAt(br.hiPairs, br.lo), br.hiPairs);
 }
 
 // bisect() testing the crossing pairs, its premise checked at the time it found with
@@ -152,13 +152,11 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
   // Regula falsi measures separations anyway; where the separating axis test measures
   // every pair that can meet, it also scans. Bisection keeps the seed's tests.
   const bool scanByAxes = options.method == TocMethod::RegulaFalsi && measuredByAxes(db, s.meeting);
-  std::optional<IntersectionResult> atStart;
-  std::optional<Bracket> bracket =
-      scanByAxes ? scanBySeparation(s, result.subintervals) : scanByTests(s, result.subintervals, atStart);
+  std::optional<Bracket> bracket = scanByAxes ? scanBySeparation(s, result.subintervals) : scanByTests(s, result.subintervals);
 
   Found found{1.0, TocStop::NoInterpenetration};
   if (bracket) {
-    startBracket(s, *bracket, scanByAxes, std::move(atStart));
+    startBracket(s, *bracket, scanByAxes);
     if (options.method == TocMethod::RegulaFalsi) found = regulaFalsi(s, *bracket);
     else if (options.watchEveryPairWhileBisecting) found = bisect(s, *bracket, BisectionTests::EveryWatchedPair);
     else found = bisectCheckingItsPremise(s, *bracket, result.bisectionsRedone);

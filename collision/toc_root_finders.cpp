@@ -28,11 +28,17 @@ IntersectionResult Search::statusOfPairsAt(const PairIds& ids, double t) {
   return testPairs(ids, false);
 }
 
-IntersectionResult Search::testPairs(const PairIds& ids, bool contacts) {
+IntersectionResult Search::interpenetrationAt(double t) {
+  db.setTime(t);
+  return testPairs(narrowed ? inBracket : watched, false, false);
+}
+
+IntersectionResult Search::testPairs(const PairIds& ids, bool contacts, bool tellContactFromApart) {
   ++tests;
   pairTests += static_cast<long>(ids.size());
   IntersectionOptions options;
   options.contacts = contacts;
+  options.tellContactFromApart = tellContactFromApart;
   options.onlyPairs = &ids;
   return test4Intersection(db, ws, options);
 }

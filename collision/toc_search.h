@@ -50,10 +50,13 @@ struct Search {
   /// The status at time t of the pairs `ids` alone (no contacts): only their objects are
   /// moved to t, the others stay where they were.
   IntersectionResult statusOfPairsAt(const PairIds& ids, double t);
+  /// statusAt(t) where only interpenetration is told: a pair that does not interpenetrate
+  /// may read separate though it is in contact (IntersectionOptions::tellContactFromApart).
+  IntersectionResult interpenetrationAt(double t);
 
  private:
   /// test4Intersection() of the pairs `ids` at the objects' current poses, counted.
-  IntersectionResult testPairs(const PairIds& ids, bool contacts);
+  IntersectionResult testPairs(const PairIds& ids, bool contacts, bool tellContactFromApart = true);
 };
 
 PairIds interpenetratingPairs(const IntersectionResult& r);

@@ -11,6 +11,7 @@
 #include "collision/aabb.h"
 #include "collision/broadphase.h"
 #include "collision/contact_reduction.h"
+#include "collision/convex_separation.h"
 #include "collision/intersection.h"
 #include "collision/shapes.h"
 #include "collision/toc_search.h"
@@ -79,6 +80,62 @@ TEST(IntersectionRandom, BroadStepsLoseNothingAgainstAllPolygonPairs) {
   EXPECT_LT(fraction, 0.75);
   RecordProperty("interpenetrating_fraction", std::to_string(fraction));
   RecordProperty("contact_cases", contact);
+}
+
+// Verdicts that leave contact untold from apart (IntersectionOptions::tellContactFromApart
+// off: collisionDetect()'s scan) find the same pairs interpenetrating, as deep, as the
+// whole verdict, and never a contact it does not: only a convex pair that a separating
+// axis shows apart, within the tolerance, may read separate. Boxes of random sizes and
+// turns, placed within three tolerances of touching along a random direction (found by
+// bisection on their separation), so that every case is near the band.
+TEST(IntersectionRandom, VerdictsThatLeaveContactUntoldFindTheSameInterpenetrations) {
+  std::mt19937 rng(20261203);
+  std::uniform_real_distribution<double> side(0.2, 1.5), offset(-3.0, 3.0);
+  std::normal_distribution<double> g;
+  int untold = 0, told = 0, interpenetrating = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    ObjectDatabase db;
+    const double eps = db.tolerance;
+    db.add("A", std::make_shared<PolygonMesh>(makeBox(test::drawnVector([&] { return side(rng); }))),
+           test::pose(V3::Zero(), randomRotation(rng)), false);
+    const Eigen::Matrix3d turnB = randomRotation(rng);
+    db.add("B", std::make_shared<PolygonMesh>(makeBox(test::drawnVector([&] { return side(rng); }))), test::pose(V3::Zero(), turnB),
+           false);
+    const V3 direction = test::drawnVector([&] { return g(rng); }).normalized();
+    const auto placeB = [&](double distance) { db.objects[1].X_WO = test::pose(distance * direction, turnB); };
+    double overlapping = 0.0, apart = 5.0;  // the boxes' half diagonals are below 1.3 m each
+    for (int k = 0; k < 60; ++k) {
+      placeB(0.5 * (overlapping + apart));
+      (*convexSeparation(db.objects[0], db.objects[1]) < 0.0 ? overlapping : apart) = 0.5 * (overlapping + apart);
+    }
+    placeB(apart + offset(rng) * eps);
+    IntersectionOptions whole;
+    whole.contacts = false;
+    IntersectionOptions quick = whole;
+    quick.tellContactFromApart = false;
+    const IntersectionResult w = test4Intersection(db, whole), q = test4Intersection(db, quick);
+    ASSERT_EQ(q.status == Status::Interpenetrating, w.status == Status::Interpenetrating) << "trial " << trial;
+    if (w.status == Status::Interpenetrating) {
+      ++interpenetrating;
+      ASSERT_EQ(q.pairs.size(), 1u);
+      EXPECT_EQ(q.pairs[0].depth, w.pairs[0].depth) << "trial " << trial;
+    }
+    if (q.status == Status::Contact) {
+      EXPECT_EQ(w.status, Status::Contact) << "trial " << trial;
+    }
+    if (w.status == Status::Contact && q.status == Status::Separate) {
+      ++untold;
+      EXPECT_GT(*convexSeparation(db.objects[0], db.objects[1]), 0.0) << "trial " << trial;
+    }
+    told += w.status == Status::Contact && q.status == Status::Contact;
+  }
+  // Every kind of case is met: interpenetrating, in contact told by overlap, and untold.
+  EXPECT_GT(interpenetrating, 40);
+  EXPECT_GT(told, 40);
+  EXPECT_GT(untold, 40);
+  RecordProperty("untold", untold);
+  RecordProperty("told", told);
+  RecordProperty("interpenetrating", interpenetrating);
 }
 
 // Summed sizes of a pair's contacts by type: count, then total area, length, points.
