@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "collision/intersection.h"
@@ -30,6 +31,8 @@ World::World(const Scene& scene, collision::TocMethod method)
     materials_.push_back({spec.restitution.value_or(scene_.contact.restitution), spec.friction.value_or(scene_.contact.friction)});
     sizes_.push_back(spec.reachFrom(body.centerOfMassLocal));
   }
+  for (size_t i = 0; i < bodies_.size(); ++i)
+    if (bodies_[i].isStatic) staticBodies_.push_back(static_cast<int>(i));
   paths_.resize(bodies_.size());  // never resized again: the database points into it
   free_.assign(bodies_.size(), 1);
   slowFor_.assign(bodies_.size(), 0.0);
@@ -182,18 +185,14 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
 
 collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {
   islandIds_.clear();
-  int dynamicBodies = 0;
-  for (const dynamics::RigidBody& b : bodies_) dynamicBodies += !b.isStatic;
-  if (static_cast<int>(island.size()) == dynamicBodies) return db_;
+  if (island.size() + staticBodies_.size() == bodies_.size()) return db_;
+  // The island's bodies and the static ones, in the order of the body array: the two
+  // sorted lists merged, so that a pile's hundreds of one-box islands each cost their
+  // own size, not the world's.
+  std::merge(island.begin(), island.end(), staticBodies_.begin(), staticBodies_.end(), std::back_inserter(islandIds_));
   islandDb_.tolerance = db_.tolerance;
   islandDb_.objects.clear();
-  for (size_t i = 0, k = 0; i < bodies_.size(); ++i) {
-    while (k < island.size() && island[k] < static_cast<int>(i)) ++k;
-    if (bodies_[i].isStatic || (k < island.size() && island[k] == static_cast<int>(i))) {
-      islandDb_.objects.push_back(db_.objects[i]);
-      islandIds_.push_back(static_cast<int>(i));
-    }
-  }
+  for (int i : islandIds_) islandDb_.objects.push_back(db_.objects[i]);
   return islandDb_;
 }
 

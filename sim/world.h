@@ -245,6 +245,7 @@ class World {
   collision::ObjectDatabase db_;
   collision::ObjectDatabase islandDb_;  // one island's share of db_ (databaseFor)
   std::vector<int> islandIds_;          // islandDb_'s objects as body indices; empty: db_ itself
+  std::vector<int> staticBodies_;       // the static bodies' indices, in order
   collision::IntersectionWorkspace workspace_;  // reused by every collisionDetect() call
   std::vector<dynamics::RigidBody> bodies_;
   std::vector<BodyPath> paths_;
