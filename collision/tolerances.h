@@ -58,7 +58,7 @@ inline constexpr double kNormalConeSlack = 1e-3;
 
 /// Contact reuse (contact_reuse.h): a pair keeps its last full test's contacts while no
 /// point of one object has moved relative to the other by more than this fraction of the
-/// contact tolerance (0.1 nm at the default). A reused gap is then within that distance
+/// contact tolerance (0.1 um at the default). A reused gap is then within that distance
 /// of a fresh test's, a thousandth of the band: far below what the solver's allowed
 /// overlap (a quarter of the band) or any reported figure resolves. Bodies at rest move
 /// far less (a resting pyramid of 210 boxes: 5e-12 m in half a second); settling ones
