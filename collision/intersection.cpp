@@ -52,7 +52,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   WorldFaces& facesB = ws.faces[b];
   facesA.reset(A);
   facesB.reset(B);
-  ws.raw.clear();
+  recycleContacts(ws.raw, ws.scratch);  // their buffers serve this pair's contacts
   bool touching = false;
   auto judge = [&](int fa, int fb, const AreaCover* cover = nullptr, AreaOnPatch* patch = nullptr) {
     const PolygonPairOutcome o = testPolygonPair(facesA.view(fa), facesB.view(fb), eps,

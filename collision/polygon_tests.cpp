@@ -118,9 +118,17 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, P
   return std::min(cutDepth, deepestInWedge(q, s.clipB, s));
 }
 
-// A contact without points yet (Contact::addPoint adds them with their gaps).
-Contact makeContact(ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b) {
+// A contact without points yet (Contact::addPoint adds them with their gaps), built in a
+// spare one's buffers when there is one (recycleContacts).
+Contact makeContact(PolygonScratch& s, ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b) {
   Contact c;
+  if (!s.spare.empty()) {
+    c = std::move(s.spare.back());
+    s.spare.pop_back();
+    c.points.clear();
+    c.gaps.clear();
+    c.separation = 0.0;
+  }
   c.type = type;
   c.normal = normal;
   c.featureA = a;
@@ -145,7 +153,7 @@ bool areaContact(const PolygonView& p, const PolygonView& q, double eps, std::ve
   // The gap at a corner x of the overlap (on q's plane) is how far p's plane lies above it
   // along q's normal.
   const double along = -p.plane.normal.dot(q.plane.normal);
-  Contact c = makeContact(ContactType::Area, q.plane.normal, {Feature::Kind::Face, p.faceId},
+  Contact c = makeContact(s, ContactType::Area, q.plane.normal, {Feature::Kind::Face, p.faceId},
                           {Feature::Kind::Face, q.faceId});
   c.points.reserve(overlap.size());
   for (const Eigen::Vector2d& x2 : overlap) {
@@ -206,7 +214,7 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
             c.addPoint(frame.to3d(x) + (0.5 * gap) * q.plane.normal, gap);
           };
           const auto [fa, fb] = features({Feature::Kind::Edge, p.edgeIds[i]});
-          Contact c = makeContact(isLine ? ContactType::Line : ContactType::Point, normal, fa, fb);
+          Contact c = makeContact(s, isLine ? ContactType::Line : ContactType::Point, normal, fa, fb);
           if (isLine) addAt(c, a), addAt(c, b);
           else addAt(c, at);
           out.push_back(std::move(c));
@@ -215,7 +223,7 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
     }
     if (!s.onLine[i] && distanceToConvex(s.q2, frame.to2d(p.vertices[i])) <= eps) {
       const auto [fa, fb] = features({Feature::Kind::Vertex, p.vertexIds[i]});
-      Contact c = makeContact(ContactType::Point, normal, fa, fb);
+      Contact c = makeContact(s, ContactType::Point, normal, fa, fb);
       c.addPoint(p.vertices[i] - (0.5 * dP[i]) * q.plane.normal, dP[i]);
       out.push_back(std::move(c));
     }
@@ -225,7 +233,7 @@ void featuresOnFace(const PolygonView& p, const double* dP, const PolygonView& q
 // Edge of p against edge of q: crossing edges give a point, overlapping parallel edges a
 // line. Edges that stay more than eps to one side of the other face's plane are skipped.
 void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView& q, const double* dQ, double eps,
-                      std::vector<Contact>& out) {
+                      std::vector<Contact>& out, PolygonScratch& s) {
   auto farFromPlane = [eps](double d0, double d1) { return (d0 > eps && d1 > eps) || (d0 < -eps && d1 < -eps); };
   for (int i = 0; i < p.size; ++i) {
     const int i1 = (i + 1) % p.size;
@@ -249,7 +257,7 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
       const Eigen::Vector3d axis = u.cross(v);
       if (axis.norm() > kParallelSine * u.norm() * v.norm()) {
         const Eigen::Vector3d n = axis.dot(outward) >= 0 ? axis.normalized() : Eigen::Vector3d(-axis.normalized());
-        Contact c = makeContact(ContactType::Point, n, fa, fb);
+        Contact c = makeContact(s, ContactType::Point, n, fa, fb);
         c.addPoint(0.5 * (cp.onFirst + cp.onSecond), n.dot(cp.onFirst - cp.onSecond));
         out.push_back(std::move(c));
         continue;
@@ -262,12 +270,12 @@ void edgeEdgeContacts(const PolygonView& p, const double* dP, const PolygonView&
       const Eigen::Vector3d shift = -0.5 * n.dot(cp.onFirst - cp.onSecond) * n;  // onto the midline
       const double gap = n.dot(cp.onFirst - cp.onSecond);
       if ((hi - lo) * u.norm() > eps) {
-        Contact c = makeContact(ContactType::Line, n, fa, fb);
+        Contact c = makeContact(s, ContactType::Line, n, fa, fb);
         c.addPoint(p0 + lo * u + shift, gap);
         c.addPoint(p0 + hi * u + shift, gap);
         out.push_back(std::move(c));
       } else {
-        Contact c = makeContact(ContactType::Point, n, fa, fb);
+        Contact c = makeContact(s, ContactType::Point, n, fa, fb);
         c.addPoint(0.5 * (cp.onFirst + cp.onSecond), gap);
         out.push_back(std::move(c));
       }
@@ -336,11 +344,16 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
   if (!area) {
     featuresOnFace(p, s.dP.data(), q, eps, true, out, s);
     featuresOnFace(q, s.dQ.data(), p, eps, false, out, s);
-    edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out);
+    edgeEdgeContacts(p, s.dP.data(), q, s.dQ.data(), eps, out, s);
   }
   const bool touching = area || out.size() > before;
-  if (!contacts) s.discard.clear();
+  if (!contacts) recycleContacts(s.discard, s);
   return {touching ? Status::Contact : Status::Separate, 0.0, area};
+}
+
+void recycleContacts(std::vector<Contact>& contacts, PolygonScratch& s) {
+  for (Contact& c : contacts) s.spare.push_back(std::move(c));
+  contacts.clear();
 }
 
 }  // namespace polysim::collision

@@ -34,7 +34,14 @@ struct PolygonScratch {
   std::vector<std::pair<double, double>> lines;  // depth along a cut, per sharp edge
   std::vector<Contact> discard;                  // contacts found when none are wanted
   std::vector<char> onLine;                      // per vertex of a polygon: ends a line contact
+  // Emptied contacts whose point buffers the next contacts reuse: a pile's detection
+  // builds millions of contacts of a few points, each two allocations when new.
+  std::vector<Contact> spare;
 };
+
+/// Empties `contacts`, keeping each one's buffers in `s` for the contacts testPolygonPair
+/// builds next.
+void recycleContacts(std::vector<Contact>& contacts, PolygonScratch& s);
 
 /// The verdict for one polygon pair.
 struct PolygonPairOutcome {
