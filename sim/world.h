@@ -154,8 +154,9 @@ class World {
   /// `contacts`, with the pairs of awake bodies in `db` that have a body that is not
   /// convex (and do not bounce) tested again in a band kWideBandFactor tolerances wide
   /// (objects mapped to bodies by `bodyOf`, empty: the same).
+  /// Taken by value: with no such body (most scenes) the list is handed back, not copied.
   std::vector<collision::PairResult> withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                  const std::vector<collision::PairResult>& contacts);
+                                                  std::vector<collision::PairResult> contacts);
   /// What the solver is given for `touching` (the contacts within the tolerance): with
   /// the speculative contacts of settled bodies (speculative_contacts.h) found in `db`
   /// (objects mapped to bodies by `bodyOf`, empty: the same), and the pairs with a body

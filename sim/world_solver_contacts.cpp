@@ -62,7 +62,7 @@ std::vector<collision::PairResult> World::speculativeContacts(const collision::O
 }
 
 std::vector<collision::PairResult> World::withWideBand(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                      const std::vector<collision::PairResult>& contacts) {
+                                                      std::vector<collision::PairResult> contacts) {
   const auto bodyAt = [&](int k) { return bodyOf.empty() ? k : bodyOf[k]; };
   bool any = false;  // an awake body that is not convex: without one, no pair is widened
   for (int k = 0; k < static_cast<int>(db.objects.size()) && !any; ++k) any = !db.objects[k].mesh->convex() && awake(bodyAt(k));
