@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "collision/clip.h"
@@ -197,9 +198,9 @@ void takeGapsAlongNormal(Contact& c, const std::vector<const Contact*>& pieces, 
 // For a pair judged polygon pair by polygon pair (PairGeometry::sunkHeldAlongEachFace):
 // the pieces of one point sunk behind faces other than the joint contact's, each as a
 // contact of its own along its face's normal, at most one per normal.
-void addSunkAlongOtherNormals(const Contact& joint, const std::vector<const Contact*>& pieces, const PairGeometry& g,
-                              double eps, std::vector<Contact>& kept) {
-  std::vector<Eigen::Vector3d> taken{joint.normal};
+void addSunkAlongOtherNormals(const Eigen::Vector3d& jointNormal, const std::vector<const Contact*>& pieces,
+                              const PairGeometry& g, double eps, std::vector<Contact>& kept) {
+  std::vector<Eigen::Vector3d> taken{jointNormal};
   for (const Contact* piece : pieces) {
     if (piece->separation >= 0.0) continue;
     const Eigen::Vector3d& n = piece->normal;
@@ -221,8 +222,11 @@ std::vector<Contact> withJointNormals(std::vector<Contact> joined, const std::ve
   for (size_t k = 0; k < joined.size(); ++k) {
     if (!jointNormal(pieces[k], geometry, eps, joined[k].normal)) continue;
     takeGapsAlongNormal(joined[k], pieces[k], eps);
-    kept.push_back(joined[k]);
-    if (geometry && geometry->sunkHeldAlongEachFace) addSunkAlongOtherNormals(joined[k], pieces[k], *geometry, eps, kept);
+    kept.push_back(std::move(joined[k]));
+    if (geometry && geometry->sunkHeldAlongEachFace) {
+      const Eigen::Vector3d normal = kept.back().normal;  // a copy: kept grows under it
+      addSunkAlongOtherNormals(normal, pieces[k], *geometry, eps, kept);
+    }
   }
   return kept;
 }
@@ -325,8 +329,8 @@ std::vector<Contact> reduceContacts(const std::vector<Contact>& raw, double eps,
     if (!covered) keptPoints.push_back(*point), pointPieces.push_back({point});
   }
   keptPoints = withJointNormals(std::move(keptPoints), pointPieces, geometry, eps);
-  out.insert(out.end(), keptLines.begin(), keptLines.end());
-  out.insert(out.end(), keptPoints.begin(), keptPoints.end());
+  out.insert(out.end(), std::make_move_iterator(keptLines.begin()), std::make_move_iterator(keptLines.end()));
+  out.insert(out.end(), std::make_move_iterator(keptPoints.begin()), std::make_move_iterator(keptPoints.end()));
   return out;
 }
 
