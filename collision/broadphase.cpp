@@ -13,10 +13,10 @@ Eigen::AlignedBox3d worldContainer(const ObjNode& object) {
 
 namespace {
 
-// One box as the sweep reads it: the sweep walks these in order of min x, so the
-// boxes sit side by side in memory instead of being reached through an index.
+// One box as the sweep reads it: the sweep walks these in order of min x, so the boxes
+// sit side by side in memory instead of being reached through an index.
 struct SweptBox {
-  double minX, maxX, minY, maxY, minZ, maxZ;
+  Eigen::AlignedBox3d box;
   int object;
   bool isStatic;
 };
@@ -25,26 +25,16 @@ struct SweptBox {
 
 void overlappingBoxPairs(const ObjectDatabase& db, const std::vector<Eigen::AlignedBox3d>& boxes,
                          std::vector<std::pair<int, int>>& pairs) {
-  thread_local std::vector<SweptBox> sweep;  // reused: this runs once per detection
-  sweep.resize(boxes.size());
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    const Eigen::AlignedBox3d& b = boxes[i];
-    sweep[i] = {b.min().x(), b.max().x(), b.min().y(), b.max().y(), b.min().z(), b.max().z(),
-                static_cast<int>(i), db.objects[i].isStatic};
-  }
-  std::sort(sweep.begin(), sweep.end(), [](const SweptBox& p, const SweptBox& q) { return p.minX < q.minX; });
+  std::vector<SweptBox> sweep(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) sweep[i] = {boxes[i], static_cast<int>(i), db.objects[i].isStatic};
+  std::sort(sweep.begin(), sweep.end(),
+            [](const SweptBox& p, const SweptBox& q) { return p.box.min().x() < q.box.min().x(); });
   pairs.clear();
   for (size_t k = 0; k < sweep.size(); ++k) {
     const SweptBox& a = sweep[k];
-    for (size_t m = k + 1; m < sweep.size() && sweep[m].minX <= a.maxX; ++m) {
+    for (size_t m = k + 1; m < sweep.size() && sweep[m].box.min().x() <= a.box.max().x(); ++m) {
       const SweptBox& b = sweep[m];
-      // Eigen's AlignedBox::intersects(), axis by axis: an empty box (min > max) meets nothing.
-      const auto meet = [](double minA, double maxA, double minB, double maxB) {
-        return std::max(minA, minB) <= std::min(maxA, maxB);
-      };
-      if ((a.isStatic && b.isStatic) || !meet(a.minX, a.maxX, b.minX, b.maxX) ||
-          !meet(a.minY, a.maxY, b.minY, b.maxY) || !meet(a.minZ, a.maxZ, b.minZ, b.maxZ))
-        continue;
+      if ((a.isStatic && b.isStatic) || !a.box.intersects(b.box)) continue;
       pairs.emplace_back(std::min(a.object, b.object), std::max(a.object, b.object));
     }
   }

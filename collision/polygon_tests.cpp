@@ -122,12 +122,10 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, P
 // spare one's buffers when there is one (recycleContacts).
 Contact makeContact(PolygonScratch& s, ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b) {
   Contact c;
-  if (!s.spare.empty()) {
-    c = std::move(s.spare.back());
+  if (!s.spare.empty()) {  // only the buffers: every other field starts as a new contact's
+    c.points.swap(s.spare.back().points);
+    c.gaps.swap(s.spare.back().gaps);
     s.spare.pop_back();
-    c.points.clear();
-    c.gaps.clear();
-    c.separation = 0.0;
   }
   c.type = type;
   c.normal = normal;
@@ -352,7 +350,11 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
 }
 
 void recycleContacts(std::vector<Contact>& contacts, PolygonScratch& s) {
-  for (Contact& c : contacts) s.spare.push_back(std::move(c));
+  for (Contact& c : contacts) {
+    c.points.clear();  // keeps the capacity
+    c.gaps.clear();
+    s.spare.push_back(std::move(c));
+  }
   contacts.clear();
 }
 
