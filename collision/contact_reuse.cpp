@@ -20,12 +20,11 @@ double displacementBound(const Eigen::Isometry3d& now, const Eigen::Isometry3d& 
   return (now.translation() - then.translation()).norm() + (now.linear() - then.linear()).norm() * reach;
 }
 
-// The contact carried by the rigid motion X.
-Contact carried(const Contact& c, const Eigen::Isometry3d& X) {
-  Contact out = c;
+// `out` becomes contact c carried by the rigid motion X (out's buffers reused).
+void carry(const Contact& c, const Eigen::Isometry3d& X, Contact& out) {
+  out = c;
   out.normal = X.linear() * c.normal;
   for (Eigen::Vector3d& p : out.points) p = X * p;
-  return out;
 }
 
 }  // namespace
@@ -57,18 +56,18 @@ std::optional<PairResult> ContactReuse::find(const ObjectDatabase& db, int a, in
   pair.a = a;
   pair.b = b;
   pair.status = Status::Contact;
-  pair.contacts.reserve(k.contacts.size());
-  for (const Contact& c : k.contacts) pair.contacts.push_back(carried(c, B.X_WO));
+  pair.contacts.resize(k.contacts.size());
+  for (size_t i = 0; i < k.contacts.size(); ++i) carry(k.contacts[i], B.X_WO, pair.contacts[i]);
   return pair;
 }
 
-void ContactReuse::keep(const ObjectDatabase& db, const PairResult& pair) {
+void ContactReuse::keep(const ObjectDatabase& db, const PairResult& pair, const std::optional<double>& separation) {
   const ObjNode& A = db.objects[pair.a];
   const ObjNode& B = db.objects[pair.b];
-  if (!enabled_ || A.id < 0 || B.id < 0 || pair.status != Status::Contact || pair.contacts.empty()) return;
-  const std::optional<double> separation = convexSeparation(A, B);
-  if (!separation) return;
-  Kept k;
+  if (!enabled_ || A.id < 0 || B.id < 0 || pair.status != Status::Contact || pair.contacts.empty() || !separation) return;
+  // A pair kept before is overwritten in place: its contacts' buffers serve again, where
+  // a fresh entry allocated every point list of a settling pile's pairs at every test.
+  Kept& k = results_[Key{A.id, B.id, db.tolerance}];
   k.separation = *separation;
   k.meshA = A.mesh.get();
   k.meshB = B.mesh.get();
@@ -76,9 +75,9 @@ void ContactReuse::keep(const ObjectDatabase& db, const PairResult& pair) {
   k.reachA = 0.0;
   for (const Eigen::Vector3d& v : A.mesh->vertices()) k.reachA = std::max(k.reachA, v.norm());
   const Eigen::Isometry3d X_BW = B.X_WO.inverse();
-  for (const Contact& c : pair.contacts) k.contacts.push_back(carried(c, X_BW));
+  k.contacts.resize(pair.contacts.size());
+  for (size_t i = 0; i < pair.contacts.size(); ++i) carry(pair.contacts[i], X_BW, k.contacts[i]);
   k.usedAt = query_;
-  results_.insert_or_assign(Key{A.id, B.id, db.tolerance}, std::move(k));
 }
 
 void ContactReuse::endQuery() {

@@ -39,9 +39,11 @@ class ContactReuse {
   /// deepest gap that far below it, so the pair's status cannot have changed. Its
   /// contacts ride on b's pose; its indices are a and b.
   std::optional<PairResult> find(const ObjectDatabase& db, int a, int b);
-  /// Keeps the full test's result of a pair of convex objects in contact (others are
-  /// not kept), with their separation by the separating axis test.
-  void keep(const ObjectDatabase& db, const PairResult& pair);
+  /// Keeps the full test's result of a pair of convex objects in contact, with
+  /// `separation`, theirs by the separating axis test at the tested poses (as
+  /// testObjectPair() measured it). Pairs in no contact, or without that separation (not
+  /// measured by axes), are not kept.
+  void keep(const ObjectDatabase& db, const PairResult& pair, const std::optional<double>& separation);
   /// Ends one test of the database with contacts: results no test has used for
   /// kStaleQueries such tests are dropped, so the memory follows the pairs in contact, not
   /// every pair ever seen. Verdict-only tests do not count: collisionDetect() leaves out

@@ -13,7 +13,8 @@
 namespace polysim::collision {
 
 PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWorkspace& ws,
-                          const IntersectionOptions& options, long* polygonPairsTested) {
+                          const IntersectionOptions& options, long* polygonPairsTested,
+                          std::optional<double>* axesSeparation) {
   PairResult result;
   result.a = a;
   result.b = b;
@@ -30,6 +31,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   // a state whose contacts the solver holds within the band could be judged
   // interpenetrating at once; a step would then never leave it.
   const std::optional<double> separation = convexSeparation(A, B);
+  if (axesSeparation) *axesSeparation = separation;
   if (separation && *separation > eps) return result;  // a lower bound on their distance
   if (separation && *separation < -eps) {
     result.status = Status::Interpenetrating;
@@ -142,8 +144,9 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
       ++result.pairsReused;
       if (!options.contacts) pair.contacts.clear();  // a verdict-only test reports none
     } else {
-      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested);
-      if (options.contacts) ws.reuse.keep(db, pair);
+      std::optional<double> separation;
+      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested, &separation);
+      if (options.contacts) ws.reuse.keep(db, pair, separation);
     }
     if (pair.status == Status::Separate) continue;
     result.status = std::max(result.status, pair.status);

@@ -1,6 +1,7 @@
 #pragma once
 // test4Intersection(): the seed's static test of the object database.
 
+#include <optional>
 #include <vector>
 
 #include "collision/area_cover.h"
@@ -75,7 +76,10 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
 IntersectionResult test4Intersection(const ObjectDatabase& db, const IntersectionOptions& options = {});
 
 /// The same test for objects a and b of the database only (normals from b towards a).
+/// `axesSeparation`, when given, receives the pair's separation by the separating axis
+/// test (convexSeparation()) when the test measured it, and is left empty otherwise.
 PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWorkspace& workspace,
-                          const IntersectionOptions& options, long* polygonPairsTested = nullptr);
+                          const IntersectionOptions& options, long* polygonPairsTested = nullptr,
+                          std::optional<double>* axesSeparation = nullptr);
 
 }  // namespace polysim::collision

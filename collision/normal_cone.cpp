@@ -16,9 +16,10 @@ bool faceStaysBelow(const PolygonMesh& mesh, int f, const Eigen::Vector3d& origi
   return true;
 }
 
-// An edge is reflex when its second face rises above the first one's plane.
+// An edge is reflex when its second face rises above the first one's plane. None of a
+// convex mesh's is: convex() checked each face against the other's plane, by this test.
 bool isReflex(const PolygonMesh& mesh, const MeshEdge& edge) {
-  if (edge.face0 < 0 || edge.face1 < 0) return false;
+  if (mesh.convex() || edge.face0 < 0 || edge.face1 < 0) return false;
   const Plane& plane = mesh.facePlane(edge.face0);
   for (int k = 0; k < mesh.faceSize(edge.face1); ++k)
     if (plane.signedDistance(mesh.vertices()[mesh.faceVertices(edge.face1)[k]]) > kPlanarityTolerance) return true;

@@ -110,23 +110,36 @@ std::vector<collision::PairResult> mergeSpeculative(const std::vector<collision:
                                                     const std::function<bool(const collision::PairResult&)>& speculate) {
   // Nothing interpenetrates within the tolerance, so nothing should within the reach; a
   // pair classed so anyway (judged by the wider band) keeps its contacts.
-  std::map<std::pair<int, int>, const collision::PairResult*> widened;
+  // The widened pairs by their body pair, smaller index first: a sorted array searched by
+  // halves (a map allocated a node per pair, for each of a landing pile's events).
+  struct Widened {
+    std::pair<int, int> key;
+    const collision::PairResult* pair;
+    bool taken = false;  // merged into a pair of `touching`
+  };
   const auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  std::vector<Widened> widened;
   for (const collision::PairResult& p : found)
-    if (p.status == collision::Status::Contact && speculate(p)) widened.emplace(key(p.a, p.b), &p);
+    if (p.status == collision::Status::Contact && speculate(p)) widened.push_back({key(p.a, p.b), &p});
+  const auto byKey = [](const Widened& x, const Widened& y) { return x.key < y.key; };
+  std::stable_sort(widened.begin(), widened.end(), byKey);  // of a pair found twice, the first counts
+  widened.erase(std::unique(widened.begin(), widened.end(), [](const Widened& x, const Widened& y) { return x.key == y.key; }),
+                widened.end());
   std::vector<collision::PairResult> contacts;
   contacts.reserve(widened.size() + touching.size());
   for (const collision::PairResult& p : touching) {
-    const auto at = widened.find(key(p.a, p.b));
-    if (at == widened.end()) {
+    const Widened wanted{key(p.a, p.b), nullptr};
+    const auto at = std::lower_bound(widened.begin(), widened.end(), wanted, byKey);
+    if (at == widened.end() || at->key != wanted.key || at->taken) {
       contacts.push_back(p);
       continue;
     }
-    contacts.push_back(*at->second);
-    widened.erase(at);
+    contacts.push_back(*at->pair);
+    at->taken = true;
     keepContactsMissed(p, contacts.back(), tolerance);
   }
-  for (const auto& [pair, p] : widened) contacts.push_back(*p);  // the new ones
+  for (const Widened& w : widened)  // the new ones
+    if (!w.taken) contacts.push_back(*w.pair);
   return contacts;
 }
 
