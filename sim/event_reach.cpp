@@ -1,8 +1,6 @@
 #include "sim/event_reach.h"
 
 #include <algorithm>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
@@ -33,16 +31,16 @@ bool EventReach::disturbed(int body, const dynamics::RigidBody& state) const {
   return s.stamp != stamp_ || s.velocity != state.velocity || s.angularVelocity != state.angularVelocity;
 }
 
-std::vector<collision::PairResult> EventReach::reached(const std::vector<collision::PairResult>& contacts,
+std::vector<collision::PairResult> EventReach::reached(std::vector<collision::PairResult> contacts,
                                                        const std::vector<std::pair<int, int>>& crossing,
                                                        const std::vector<dynamics::RigidBody>& bodies,
                                                        const std::vector<double>& sizes) const {
   dynamics::DisjointSets groups(static_cast<int>(bodies.size()));
   for (const collision::PairResult& p : contacts)
     if (!bodies[p.a].isStatic && !bodies[p.b].isStatic) groups.join(p.a, p.b);
-  std::unordered_set<int> reachedRoots;
+  std::vector<char> reachedRoot(bodies.size(), 0);  // per group root
   const auto disturb = [&](int i) {
-    if (!bodies[i].isStatic) reachedRoots.insert(groups.root(i));
+    if (!bodies[i].isStatic) reachedRoot[groups.root(i)] = 1;
   };
   for (const auto& [a, b] : crossing) disturb(a), disturb(b);
   for (const collision::PairResult& p : contacts) {
@@ -54,23 +52,26 @@ std::vector<collision::PairResult> EventReach::reached(const std::vector<collisi
   // A settling group (every body slower than kSettlingSpeed, not every one at rest after
   // its last solve) is swept again too: its sweeps carry it to rest (kSettlingSolverSweeps).
   struct Motion {
-    bool someFast = false, allRested = true;
+    bool seen = false, someFast = false, allRested = true;
   };
-  std::unordered_map<int, Motion> motionOf;  // per group root
+  std::vector<Motion> motionOf(bodies.size());  // per group root
   for (const collision::PairResult& p : contacts)
     for (int i : {p.a, p.b}) {
       const dynamics::RigidBody& b = bodies[i];
       if (b.isStatic) continue;
       Motion& m = motionOf[groups.root(i)];
+      m.seen = true;
       m.someFast = m.someFast || b.velocity.norm() + b.angularVelocity.norm() * sizes[i] >= dynamics::kSettlingSpeed;
       m.allRested = m.allRested && b.restedAfterLastSolve;
     }
-  for (const auto& [root, m] : motionOf)
-    if (!m.someFast && !m.allRested) reachedRoots.insert(root);
-  std::vector<collision::PairResult> kept;
-  for (const collision::PairResult& p : contacts)
-    if (reachedRoots.count(groups.root(bodies[p.a].isStatic ? p.b : p.a))) kept.push_back(p);
-  return kept;
+  for (size_t root = 0; root < motionOf.size(); ++root)
+    if (motionOf[root].seen && !motionOf[root].someFast && !motionOf[root].allRested) reachedRoot[root] = 1;
+  contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
+                                [&](const collision::PairResult& p) {
+                                  return !reachedRoot[groups.root(bodies[p.a].isStatic ? p.b : p.a)];
+                                }),
+                 contacts.end());
+  return contacts;
 }
 
 }  // namespace polysim::sim

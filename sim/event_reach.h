@@ -38,8 +38,9 @@ class EventReach {
   /// with as many contacts (new to the band, or a point that became a line as a box
   /// turned); and the pairs of a settling group: every body slower than kSettlingSpeed
   /// (m/s, its spin times its size `sizes` (m) counted), not every one at rest after its
-  /// last solve. The others are left out; their order is kept.
-  std::vector<collision::PairResult> reached(const std::vector<collision::PairResult>& contacts,
+  /// last solve. The others are left out; their order is kept. Taken by value: the
+  /// pairs kept are moved, not copied.
+  std::vector<collision::PairResult> reached(std::vector<collision::PairResult> contacts,
                                              const std::vector<std::pair<int, int>>& crossing,
                                              const std::vector<dynamics::RigidBody>& bodies,
                                              const std::vector<double>& sizes) const;

@@ -171,13 +171,12 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     const BodyPairs bouncing = bouncingPairs(contacts);
     // Only the groups of contacts the event disturbed are solved again (event_reach.h); a
     // stalled event pushes all of its contacts apart.
-    const auto reached = [&](const std::vector<collision::PairResult>& pairs) {
-      return elapsed > 0.0 ? reach_.reached(pairs, crossing, bodies_, sizes_) : pairs;
-    };
-    resolveContacts(reached(solved), remaining, false, allowedOverlap);  // impulses at the contact
-    if (supportTouchingBodies(contacts, bouncing, remaining)) {   // bodies that landed take the rest of the step's gravity,
-      if (elapsed > 0.0) solved = solverContactsOnceLanded(db, islandIds_, contacts);  // and may now speculate (settled),
-      resolveContacts(reached(solved), remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
+    if (elapsed > 0.0) solved = reach_.reached(std::move(solved), crossing, bodies_, sizes_);
+    resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
+    if (supportTouchingBodies(contacts, bouncing, remaining)) {  // bodies that landed take the rest of the step's gravity,
+      if (elapsed > 0.0)                                         // and may now speculate (settled),
+        solved = reach_.reached(solverContactsOnceLanded(db, islandIds_, contacts), crossing, bodies_, sizes_);
+      resolveContacts(solved, remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
     }
   }
   contactsAfter.insert(contactsAfter.end(), contacts.begin(), contacts.end());
