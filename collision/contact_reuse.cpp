@@ -4,7 +4,6 @@
 #include <functional>
 #include <limits>
 
-#include "collision/convex_separation.h"
 #include "collision/tolerances.h"
 
 namespace polysim::collision {

@@ -18,6 +18,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   PairResult result;
   result.a = a;
   result.b = b;
+  if (axesSeparation) axesSeparation->reset();  // until measured below
   const ObjNode& A = db.objects[a];
   const ObjNode& B = db.objects[b];
   const double eps = db.tolerance;
