@@ -31,7 +31,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   // face deeper than its gap (along the face's normal, over the face grown by eps), and
   // a state whose contacts the solver holds within the band could be judged
   // interpenetrating at once; a step would then never leave it.
-  const std::optional<double> separation = convexSeparation(A, B);
+  const std::optional<double> separation = ws.separations.measure(A, B);
   if (axesSeparation) *axesSeparation = separation;
   if (separation && *separation > eps) return result;  // a lower bound on their distance
   if (separation && *separation < -eps) {

@@ -11,6 +11,7 @@
 #include "collision/contact_reuse.h"
 #include "collision/object.h"
 #include "collision/polygon_tests.h"
+#include "collision/separation_memo.h"
 
 namespace polysim::collision {
 
@@ -62,6 +63,9 @@ struct IntersectionWorkspace {
   AreaOnPatch patch;
   /// Pairs in contact kept from earlier tests; off unless enabled (contact_reuse.h).
   ContactReuse reuse;
+  /// Separations by the separating axis test kept with their poses; off unless enabled
+  /// (separation_memo.h). Exact: a pair measured again at the same poses gets the same value.
+  SeparationMemo separations;
 };
 
 /// Tests every pair of objects of the database at their current transforms (static pairs

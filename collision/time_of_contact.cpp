@@ -84,7 +84,7 @@ std::optional<Bracket> scanBySeparation(Search& s, int subintervals) {
       const ObjNode& A = s.db.objects[a];
       const ObjNode& B = s.db.objects[b];
       if (!grow(worldContainer(A), eps).intersects(worldContainer(B))) continue;
-      const double separation = *convexSeparation(A, B);
+      const double separation = *s.ws.separations.measure(A, B);
       measured = true;
       if (separation < -eps) br.hiPairs.emplace_back(a, b), least.value = std::min(least.value, separation);
       else unsure = unsure || separation < 0.0;

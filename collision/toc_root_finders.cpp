@@ -49,20 +49,20 @@ namespace {
 // `motion` (m, how far their points can move towards each other), stays above the
 // depth of interpenetration by a margin (kUnwatchedMarginFraction): then no pose within
 // that motion interpenetrates.
-bool mayInterpenetrate(const ObjNode& A, const ObjNode& B, double motion, double tolerance) {
-  const std::optional<double> separation = convexSeparation(A, B);
+bool mayInterpenetrate(SeparationMemo& memo, const ObjNode& A, const ObjNode& B, double motion, double tolerance) {
+  const std::optional<double> separation = memo.measure(A, B);
   return !separation || *separation - motion <= -(1.0 - kUnwatchedMarginFraction) * tolerance;
 }
 
 }  // namespace
 
-PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, const PairIds& meeting) {
+PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting) {
   PairIds ids;
   db.setTime(0.0);
   for (const auto& [a, b] : meeting) {
     const ObjNode& A = db.objects[a];
     const ObjNode& B = db.objects[b];
-    if (mayInterpenetrate(A, B, A.motionBound + B.motionBound, db.tolerance)) ids.emplace_back(a, b);
+    if (mayInterpenetrate(ws.separations, A, B, A.motionBound + B.motionBound, db.tolerance)) ids.emplace_back(a, b);
   }
   db.setTime(1.0);
   return ids;
@@ -107,7 +107,7 @@ Separation signedSeparation(Search& s, const PairIds& ids, double reach) {
   for (const auto& [a, b] : ids) {
     const ObjNode& A = s.db.objects[a];
     const ObjNode& B = s.db.objects[b];
-    if (const std::optional<double> convex = convexSeparation(A, B)) {
+    if (const std::optional<double> convex = s.ws.separations.measure(A, B)) {
       take(*convex, false);
       continue;
     }
@@ -206,7 +206,7 @@ void narrowToBracket(Search& s, const Bracket& br) {
     const ObjNode& A = s.db.objects[a];
     const ObjNode& B = s.db.objects[b];
     const bool crossing = std::find(br.hiPairs.begin(), br.hiPairs.end(), std::pair{a, b}) != br.hiPairs.end();
-    if (crossing || mayInterpenetrate(A, B, (rate(A) + rate(B)) * reach, s.db.tolerance)) kept.emplace_back(a, b);
+    if (crossing || mayInterpenetrate(s.ws.separations, A, B, (rate(A) + rate(B)) * reach, s.db.tolerance)) kept.emplace_back(a, b);
   }
   s.inBracket = std::move(kept);
   s.narrowed = true;

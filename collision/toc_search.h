@@ -25,7 +25,7 @@ PairIds pairsThatCanMeet(const ObjectDatabase& db);
 /// convex pairs with separating axes whose separation at t = 0, less the motion bounds of
 /// both, stays above minus the tolerance (kUnwatchedMarginFraction): a pair resting in a
 /// settled stack, while a body lands on top. Leaves the database at t = 1.
-PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, const PairIds& meeting);
+PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting);
 
 /// The state of the search: the database, its workspace, the pairs that can meet in the
 /// interval, those of them that can interpenetrate, and the count of tests made.
@@ -33,7 +33,7 @@ struct Search {
   ObjectDatabase& db;
   IntersectionWorkspace& ws;
   PairIds meeting = pairsThatCanMeet(db);
-  PairIds watched = pairsThatCanInterpenetrate(db, meeting);
+  PairIds watched = pairsThatCanInterpenetrate(db, ws, meeting);
   /// The watched pairs that can still interpenetrate inside the root finder's bracket,
   /// once it has narrowed them (bisect()); until then, empty and unused.
   PairIds inBracket = {};

@@ -18,6 +18,7 @@ World::World(const Scene& scene, collision::TocMethod method)
   checkInitialState(scene_);
   tocOptions_.method = method;
   workspace_.reuse.enable(scene_.contact.reuseContacts);
+  workspace_.separations.enable();  // its meshes live as long as the world
   for (const BodySpec& spec : scene_.bodies) {
     dynamics::RigidBody body = dynamics::RigidBody::fixed();
     if (!spec.isStatic) {

@@ -113,7 +113,8 @@ TEST(WatchedPairsRandom, APairLeftUnwatchedNeverInterpenetratesInTheInterval) {
     w.db.setTime(1.0);
     const toc::PairIds meeting = toc::pairsThatCanMeet(w.db);
     ASSERT_EQ(meeting.size(), 1u);
-    const bool watched = !toc::pairsThatCanInterpenetrate(w.db, meeting).empty();
+    IntersectionWorkspace ws;
+    const bool watched = !toc::pairsThatCanInterpenetrate(w.db, ws, meeting).empty();
     if (shape == 4) {
       EXPECT_TRUE(watched) << "a pair that is not convex is always watched";
     }
