@@ -118,8 +118,7 @@ BlockMatrix couplingMatrix(const std::vector<Row>& rows, const std::vector<int>&
 // A block's normal impulses solved together: the accumulated impulses x >= 0 with normal
 // velocities >= their targets and complementary. Falls back to row by row when the
 // small problem has no solution (round-off at a degenerate manifold).
-double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, const SmallLcp* lcp) {
-  const int n = static_cast<int>(block.size());
+double solveNormalBlock(std::vector<Row>& rows, const int* block, int n, const SmallLcp* lcp) {
   if (n == 1) return solveNormalRow(rows[block[0]]);
   const BlockMatrix& A = lcp->matrix();
   BlockVector b(n), old(n);
@@ -132,7 +131,7 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
   const std::optional<BlockVector> x = lcp->solve(b);
   double change = 0.0;
   if (!x) {
-    for (int k : block) change = std::max(change, solveNormalRow(rows[k]));
+    for (int i = 0; i < n; ++i) change = std::max(change, solveNormalRow(rows[block[i]]));
     return change;
   }
   for (int i = 0; i < n; ++i) {
@@ -144,28 +143,33 @@ double solveNormalBlock(std::vector<Row>& rows, const std::vector<int>& block, c
   return change;
 }
 
-// No contact of the group's blocks moves faster than kSettlingSpeed at its point.
-bool settling(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks, const std::vector<int>& group) {
-  for (int k : group)
-    for (int row : blocks[k])
-      if (relativeVelocity(rows[row]).squaredNorm() >= kSettlingSpeed * kSettlingSpeed) return false;
+// Whether `holds` is true of every row of group g's blocks.
+template <typename RowTest>
+bool everyRowOf(const SweepLayout& layout, int g, RowTest holds) {
+  for (int k = layout.groupStart[g]; k < layout.groupStart[g + 1]; ++k) {
+    const SweepLayout::Block& block = layout.blocks[layout.groupBlocks[k]];
+    for (int i = block.first; i < block.first + block.count; ++i)
+      if (!holds(layout.blockRows[i])) return false;
+  }
   return true;
 }
 
-// Every moving body of the group ended its last solve at rest, and every contact has
+// No contact of group g moves faster than kSettlingSpeed at its point.
+bool settling(const std::vector<Row>& rows, const SweepLayout& layout, int g) {
+  return everyRowOf(layout, g, [&](int row) { return relativeVelocity(rows[row]).squaredNorm() < kSettlingSpeed * kSettlingSpeed; });
+}
+
+// Every moving body of group g ended its last solve at rest, and every contact has
 // friction. Such a group's sweeps stop at kMaxSolverIterations like a moving one's: what
 // they leave, shock propagation settles, as it did the step before. Frictionless contacts
 // are left out: columns of frictionless cups, nesting, reached the event bound in 122
 // steps against 12 (seed 2) and 71 against 1 (seed 4) without their settling sweeps.
-bool rested(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks, const std::vector<int>& group) {
+bool rested(const std::vector<Row>& rows, const SweepLayout& layout, int g) {
   const auto restedBody = [](const RigidBody* b) { return b->isStatic || b->restedAfterLastSolve; };
-  for (int k : group)
-    for (int row : blocks[k])
-      if (rows[row].friction <= 0 || !restedBody(rows[row].a) || !restedBody(rows[row].b)) return false;
-  return true;
+  return everyRowOf(layout, g, [&](int row) { return rows[row].friction > 0 && restedBody(rows[row].a) && restedBody(rows[row].b); });
 }
 
-// Sweeps over one group's blocks until no impulse changes by kSolverVelocityTolerance or
+// Sweeps over group g's blocks until no impulse changes by kSolverVelocityTolerance or
 // its limit is reached: kMaxSolverIterations, or maxSweeps if fewer or if the group is
 // settling there and did not rest after its last solve (settings.h); a settling group's
 // sweeps also stop once they stall (SettlingProgress). Each sweep solves
@@ -174,23 +178,25 @@ bool rested(const std::vector<Row>& rows, const std::vector<std::vector<int>>& b
 // on (symmetric Gauss-Seidel): a load that must shift across a tall structure travels both
 // ways. Every sweep bottom-up, 600 sweeps a step left the 40-high pyramid leaning out of
 // its plane by 5 cm in 3 s; alternating, 2.4 mm.
-SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks,
-                      const std::vector<const SmallLcp*>& couplingOf, const std::vector<int>& group, int maxSweeps) {
+SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, int g, int maxSweeps) {
   SolveStats stats;
   SettlingProgress progress;
+  const int* groupBlocks = layout.groupBlocks.data() + layout.groupStart[g];
+  const int blockCount = layout.groupStart[g + 1] - layout.groupStart[g];
   for (int limit = std::min(maxSweeps, kMaxSolverIterations);;) {
-    if (stats.iterations == limit && limit < maxSweeps && settling(rows, blocks, group) && !rested(rows, blocks, group))
+    if (stats.iterations == limit && limit < maxSweeps && settling(rows, layout, g) && !rested(rows, layout, g))
       limit = maxSweeps;
     if (stats.iterations >= limit) break;
     if (limit > kMaxSolverIterations && progress.stalled(stats.iterations)) break;
     ++stats.iterations;
     double largestChange = 0.0;  // m/s: impulse change over the lighter body's mass
     const bool backwards = stats.iterations % 2 == 0;  // the first sweep is forwards
-    for (size_t n = 0; n < group.size(); ++n) {
-      const int k = group[backwards ? group.size() - 1 - n : n];
-      stats.rowSolves += static_cast<long>(blocks[k].size());
-      for (int row : blocks[k]) largestChange = std::max(largestChange, solveFrictionRow(rows[row]));
-      largestChange = std::max(largestChange, solveNormalBlock(rows, blocks[k], couplingOf[k]));
+    for (int n = 0; n < blockCount; ++n) {
+      const SweepLayout::Block& block = layout.blocks[groupBlocks[backwards ? blockCount - 1 - n : n]];
+      const int* blockRows = layout.blockRows.data() + block.first;
+      stats.rowSolves += block.count;
+      for (int i = 0; i < block.count; ++i) largestChange = std::max(largestChange, solveFrictionRow(rows[blockRows[i]]));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, blockRows, block.count, block.coupling));
     }
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;
@@ -202,18 +208,28 @@ SolveStats sweepGroup(std::vector<Row>& rows, const std::vector<std::vector<int>
 }
 }  // namespace
 
-ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount)
-    : blocks_(blocksOf(rows)), couplingOf_(blocks_.size(), nullptr), groups_(groupsOf(rows, blocks_, bodyCount)) {
-  couplings_.reserve(blocks_.size());  // never reallocated: couplingOf_ points into it
-  for (size_t k = 0; k < blocks_.size(); ++k)
-    if (blocks_[k].size() > 1) couplingOf_[k] = &couplings_.emplace_back(couplingMatrix(rows, blocks_[k]));
+ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount) {
+  const std::vector<std::vector<int>> blocks = blocksOf(rows);
+  couplings_.reserve(blocks.size());  // never reallocated: the layout points into it
+  for (const std::vector<int>& rowsOfBlock : blocks) {
+    SweepLayout::Block& block = layout_.blocks.emplace_back();
+    block.first = static_cast<int>(layout_.blockRows.size());
+    block.count = static_cast<int>(rowsOfBlock.size());
+    if (block.count > 1) block.coupling = &couplings_.emplace_back(couplingMatrix(rows, rowsOfBlock));
+    layout_.blockRows.insert(layout_.blockRows.end(), rowsOfBlock.begin(), rowsOfBlock.end());
+  }
+  layout_.groupStart.push_back(0);
+  for (const std::vector<int>& group : groupsOf(rows, blocks, bodyCount)) {
+    layout_.groupBlocks.insert(layout_.groupBlocks.end(), group.begin(), group.end());
+    layout_.groupStart.push_back(static_cast<int>(layout_.groupBlocks.size()));
+  }
 }
 
 SolveStats ContactSweeps::run(std::vector<Row>& rows, int maxSweeps) const {
   SolveStats stats;
   stats.converged = true;
-  for (const std::vector<int>& group : groups_) {
-    const SolveStats swept = sweepGroup(rows, blocks_, couplingOf_, group, maxSweeps);
+  for (int g = 0; g < layout_.groupCount(); ++g) {
+    const SolveStats swept = sweepGroup(rows, layout_, g, maxSweeps);
     stats.iterations = std::max(stats.iterations, swept.iterations);
     stats.converged = stats.converged && swept.converged;
     stats.rowSolves += swept.rowSolves;
@@ -223,9 +239,12 @@ SolveStats ContactSweeps::run(std::vector<Row>& rows, int maxSweeps) const {
 
 std::vector<std::vector<int>> ContactSweeps::groupRows() const {
   std::vector<std::vector<int>> rows;
-  for (const std::vector<int>& group : groups_) {
+  for (int g = 0; g < layout_.groupCount(); ++g) {
     std::vector<int>& mine = rows.emplace_back();
-    for (int k : group) mine.insert(mine.end(), blocks_[k].begin(), blocks_[k].end());
+    everyRowOf(layout_, g, [&](int row) {
+      mine.push_back(row);
+      return true;
+    });
     std::sort(mine.begin(), mine.end());
   }
   return rows;

@@ -21,6 +21,21 @@ double kineticEnergy(const std::vector<RigidBody*>& bodies);
 /// arms: a body marked static (or with zero inverse mass and frame) takes no impulse.
 void prepareAxes(Row& r);
 
+/// The order of a solve's sweeps, flat: each block's rows and each group's blocks, so
+/// that a sweep reads them in order without chasing a vector per block or group.
+struct SweepLayout {
+  struct Block {
+    int first = 0, count = 0;              // its rows: blockRows[first, first + count)
+    const SmallLcp* coupling = nullptr;    // its coupling matrix, or null for one row
+  };
+  std::vector<int> blockRows;    // each block's rows, block after block
+  std::vector<Block> blocks;
+  std::vector<int> groupBlocks;  // each group's blocks in the rows' order, group after group
+  std::vector<int> groupStart;   // group g's: groupBlocks[groupStart[g], groupStart[g + 1])
+
+  int groupCount() const { return static_cast<int>(groupStart.size()) - 1; }
+};
+
 /// The rows of one solve, laid out for sweeping: the blocks (an area's corners or a
 /// line's ends, solved together by small_lcp.h; any other point alone), each block's
 /// coupling matrix, and the groups of blocks that share no moving body. Built once per
@@ -29,6 +44,8 @@ class ContactSweeps {
  public:
   /// `bodyCount`: the size of the body array the rows' sources index.
   ContactSweeps(const std::vector<Row>& rows, int bodyCount);
+  ContactSweeps(const ContactSweeps&) = delete;  // the layout points into couplings_
+  ContactSweeps& operator=(const ContactSweeps&) = delete;
 
   /// Sweeps each group until no impulse changes by kSolverVelocityTolerance (m/s over the
   /// lighter body's mass) or its limit is reached: kMaxSolverIterations, or `maxSweeps`
@@ -44,10 +61,8 @@ class ContactSweeps {
   std::vector<std::vector<int>> groupRows() const;
 
  private:
-  std::vector<std::vector<int>> blocks_;
-  std::vector<SmallLcp> couplings_;             // one per block of several rows
-  std::vector<const SmallLcp*> couplingOf_;     // per block: its matrix, or null for one row
-  std::vector<std::vector<int>> groups_;        // block indices, in the rows' order
+  std::vector<SmallLcp> couplings_;  // one per block of several rows; the layout points into it
+  SweepLayout layout_;
 };
 
 }  // namespace polysim::dynamics::solver

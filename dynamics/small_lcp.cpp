@@ -3,7 +3,6 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
-#include <vector>
 
 #include "dynamics/settings.h"
 
@@ -11,23 +10,22 @@ namespace polysim::dynamics {
 
 namespace {
 
-int pointsIn(unsigned set) {
+constexpr int pointsIn(unsigned set) {
   int count = 0;
   for (; set; set &= set - 1) ++count;
   return count;
 }
 
-// The sets of n points, largest first (in order of their bits among sets of one size).
-const std::vector<unsigned>& setsLargestFirst(int n) {
-  static const std::array<std::vector<unsigned>, kMaxBlockSize + 1> table = [] {
-    std::array<std::vector<unsigned>, kMaxBlockSize + 1> sets;
-    for (int size = 0; size <= kMaxBlockSize; ++size) {
-      for (unsigned s = 0; s < (1u << size); ++s) sets[size].push_back(s);
-      std::stable_sort(sets[size].begin(), sets[size].end(), [](unsigned x, unsigned y) { return pointsIn(x) > pointsIn(y); });
-    }
-    return sets;
-  }();
-  return table[n];
+// The sets of N points, largest first (in order of their bits among sets of one size).
+// Made at compile time: a sweep asks for them once per block it solves.
+template <int N>
+constexpr std::array<unsigned, (1u << N)> setsLargestFirst() {
+  std::array<unsigned, (1u << N)> sets{};
+  size_t next = 0;
+  for (int size = N; size >= 0; --size)
+    for (unsigned s = 0; s < (1u << N); ++s)
+      if (pointsIn(s) == size) sets[next++] = s;
+  return sets;
 }
 
 // The points of a set, in order, and how many there are.
@@ -121,7 +119,8 @@ std::optional<BlockVector> SmallLcp::solveWithSet(unsigned set, const BlockVecto
 
 template <int N>
 std::optional<BlockVector> SmallLcp::solveSized(const BlockVector& b, double scale) const {
-  for (unsigned set : setsLargestFirst(N))
+  static constexpr std::array<unsigned, (1u << N)> kSets = setsLargestFirst<N>();
+  for (unsigned set : kSets)
     if (std::optional<BlockVector> x = solveWithSet<N>(set, b, scale)) return x;
   return std::nullopt;
 }
