@@ -94,6 +94,64 @@ TEST(SmallLcp, RandomSingularProblemsLiftTheCornersTheyMust) {
   EXPECT_GT(met, 20) << "trials where every corner pushing is the answer";
 }
 
+// A face's four corners (A = J M^-1 J^T, of rank 3) solved again and again by one
+// SmallLcp, as a block is through a solve's sweeps: a load that first lifts a corner and
+// then comes down evenly must be spread evenly again, whatever set held the time before
+// (three corners of a rectangle, or two across it, also meet every target: the answer a
+// block would keep were the set that held last tried before larger ones).
+TEST(SmallLcp, AFaceLoadedEvenlyAfterATiltSpreadsItsLoadEvenly) {
+  Eigen::MatrixXd J(4, 3);  // each corner's normal row [1, y, -x] on a unit square in z
+  for (int i = 0; i < 4; ++i) J.row(i) << 1.0, i < 2 ? 0.5 : -0.5, i % 2 ? -0.5 : 0.5;
+  const BlockMatrix A = J * Eigen::Vector3d(1.0, 6.0, 6.0).asDiagonal() * J.transpose();
+  const Eigen::Vector4d null(1, -1, -1, 1);  // the twist no load produces: J^T null = 0
+  ASSERT_LT((J.transpose() * null).norm(), 1e-15);
+  const SmallLcp lcp(A);
+  for (double twist : {0.3, -0.3, 0.6}) {
+    const std::optional<BlockVector> tilted = lcp.solve(BlockVector(-Eigen::Vector4d::Ones() + twist * null));
+    ASSERT_TRUE(tilted);
+    ASSERT_LT(tilted->minCoeff(), 1e-12) << "twist " << twist << ": a corner lifts";
+    const std::optional<BlockVector> even = lcp.solve(BlockVector(-Eigen::Vector4d::Ones()));
+    ASSERT_TRUE(even);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR((*even)(i), 0.25, 1e-12) << "twist " << twist << ", corner " << i;
+  }
+}
+
+// One SmallLcp through a random sequence of problems answers each as a fresh one does:
+// the same velocities (w = A x + b is one for every answer of a semidefinite problem),
+// and the same impulses wherever the fresh answer has every corner pushing.
+TEST(SmallLcp, ASequenceOfProblemsIsSolvedAsEachAlone) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int everyPushing = 0, someLifting = 0;
+  for (int face = 0; face < 20; ++face) {
+    Eigen::MatrixXd J(4, 3);
+    for (int i = 0; i < 4; ++i) J.row(i) << 1.0, 0.5 * (i < 2 ? 1 : -1) + 0.1 * u(rng), 0.5 * (i % 2 ? 1 : -1) + 0.1 * u(rng);
+    const BlockMatrix A = J * Eigen::Vector3d(1.0, 6.0, 6.0).asDiagonal() * J.transpose();
+    const SmallLcp reused(A);
+    for (int k = 0; k < 30; ++k) {
+      // A body approaching the face while turning a little (b in A's range: the corners
+      // can all meet it), a third of the time with a twist no load produces, now and then anything.
+      Eigen::Vector4d b = J * Eigen::Vector3d(-1.0 + 0.2 * u(rng), 0.3 * u(rng), 0.3 * u(rng));
+      const Eigen::Vector4d null = Eigen::FullPivLU<Eigen::MatrixXd>(J.transpose()).kernel().col(0).normalized();
+      if (k % 3 == 1) b += 0.3 * u(rng) * null;
+      if (k % 7 == 3) b = Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng));
+      const std::optional<BlockVector> x = reused.solve(BlockVector(b));
+      const std::optional<BlockVector> alone = SmallLcp(A).solve(BlockVector(b));
+      ASSERT_TRUE(x && alone) << "face " << face << ", problem " << k;
+      expectComplementary(A, b, *x, 1e-9);
+      EXPECT_LT((A * (*x - *alone)).cwiseAbs().maxCoeff(), 1e-9) << "face " << face << ", problem " << k;
+      if (alone->minCoeff() > 1e-9) {
+        ++everyPushing;
+        EXPECT_LT((*x - *alone).cwiseAbs().maxCoeff(), 1e-9) << "face " << face << ", problem " << k;
+      } else {
+        ++someLifting;
+      }
+    }
+  }
+  EXPECT_GT(everyPushing, 50);
+  EXPECT_GT(someLifting, 50);
+}
+
 RigidBody unitCube() {
   MassProperties props;
   props.mass = 1.0;
