@@ -127,12 +127,12 @@ TEST(SmallLcp, ASequenceOfProblemsIsSolvedAsEachAlone) {
     Eigen::MatrixXd J(4, 3);
     for (int i = 0; i < 4; ++i) J.row(i) << 1.0, 0.5 * (i < 2 ? 1 : -1) + 0.1 * u(rng), 0.5 * (i % 2 ? 1 : -1) + 0.1 * u(rng);
     const BlockMatrix A = J * Eigen::Vector3d(1.0, 6.0, 6.0).asDiagonal() * J.transpose();
+    const Eigen::Vector4d null = Eigen::FullPivLU<Eigen::MatrixXd>(J.transpose()).kernel().col(0).normalized();
     const SmallLcp reused(A);
     for (int k = 0; k < 30; ++k) {
       // A body approaching the face while turning a little (b in A's range: the corners
       // can all meet it), a third of the time with a twist no load produces, now and then anything.
       Eigen::Vector4d b = J * Eigen::Vector3d(-1.0 + 0.2 * u(rng), 0.3 * u(rng), 0.3 * u(rng));
-      const Eigen::Vector4d null = Eigen::FullPivLU<Eigen::MatrixXd>(J.transpose()).kernel().col(0).normalized();
       if (k % 3 == 1) b += 0.3 * u(rng) * null;
       if (k % 7 == 3) b = Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng));
       const std::optional<BlockVector> x = reused.solve(BlockVector(b));
