@@ -154,7 +154,7 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
     result.pairs.push_back(std::move(pair));
     if (result.status == Status::Interpenetrating && options.stopAtInterpenetration) break;
   }
-  if (options.contacts) ws.reuse.endQuery();  // verdict-only tests may skip pairs that still rest
+  if (options.contacts && options.agesKeptContacts) ws.reuse.endQuery();  // verdict-only tests may skip pairs that still rest
   return result;
 }
 

@@ -35,6 +35,11 @@ struct IntersectionOptions {
   /// within the tolerance (collisionDetect() gives the pairs that can meet in its
   /// interval). The result is the same, at the cost of the pairs given.
   const std::vector<std::pair<int, int>>* onlyPairs = nullptr;
+  /// With contacts: the test counts as one of the queries after which contact reuse drops
+  /// what no query used (ContactReuse::endQuery). Off for a test of a few pairs among
+  /// many (the pairs an event reaches), which would otherwise age the rest: a resting
+  /// pile's pairs, tested once a step, would be dropped by a landing's dozens of events.
+  bool agesKeptContacts = true;
 };
 
 struct IntersectionResult {

@@ -123,14 +123,19 @@ void startBracket(Search& s, Bracket& br, bool byAxes) {
 }
 
 // bisect() testing the crossing pairs, its premise checked at the time it found with
-// every pair that can meet (the test whose contacts are returned): when another pair
-// interpenetrates there, the bracket is bisected again from the start watching every
-// pair (counted in `redone`).
-Found bisectCheckingItsPremise(Search& s, Bracket& br, int& redone) {
+// every pair that can meet (with `gather`, the test whose contacts are returned; else
+// the verdict of those that can interpenetrate): when another pair interpenetrates
+// there, the bracket is bisected again from the start watching every pair (counted in
+// `redone`).
+Found bisectCheckingItsPremise(Search& s, Bracket& br, int& redone, bool gather) {
   const Bracket whole = br;
   Found found = bisect(s, br, BisectionTests::CrossingPairs);
-  found.atTime = s.statusAt(found.time, true);
-  if (found.atTime->status != Status::Interpenetrating) return found;
+  if (gather) {
+    found.atTime = s.statusAt(found.time, true);
+    if (found.atTime->status != Status::Interpenetrating) return found;
+  } else if (s.interpenetrationOfWatchedAt(found.time).status != Status::Interpenetrating) {
+    return found;
+  }
   ++redone;
   br = whole;
   return bisect(s, br, BisectionTests::EveryWatchedPair);
@@ -159,12 +164,13 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
     startBracket(s, *bracket, scanByAxes);
     if (options.method == TocMethod::RegulaFalsi) found = regulaFalsi(s, *bracket);
     else if (options.watchEveryPairWhileBisecting) found = bisect(s, *bracket, BisectionTests::EveryWatchedPair);
-    else found = bisectCheckingItsPremise(s, *bracket, result.bisectionsRedone);
+    else found = bisectCheckingItsPremise(s, *bracket, result.bisectionsRedone, options.gatherAtEvent);
     result.crossing = std::move(bracket->hiPairs);
   }
 
   if (!found.atTime) {
-    found.atTime = s.statusAt(found.time, true);
+    found.atTime = bracket && !options.gatherAtEvent ? s.contactsOfPairsAt(result.crossing, found.time)
+                                                     : s.statusAt(found.time, true);
   }
   result.time = found.time;
   result.status = found.atTime->status;

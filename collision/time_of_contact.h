@@ -39,6 +39,13 @@ struct TocOptions {
   /// not only those crossing at its end (toc_search.h). Slower; the reference the
   /// default is checked against, as the seed's search was written.
   bool watchEveryPairWhileBisecting = false;
+  /// At an event (a time found before the interval's end), gather the contacts of every
+  /// pair that can meet (the seed's behaviour). Off: only the pairs that stopped the
+  /// interval (TocResult::crossing) are given with their contacts, for a caller that
+  /// gathers the others it needs itself (the step loop: the pairs of the groups an event
+  /// reaches); the verdict still covers every pair, so nothing interpenetrates at the
+  /// time returned. At the interval's end every pair is gathered either way.
+  bool gatherAtEvent = true;
 };
 
 struct TocResult {
@@ -46,7 +53,8 @@ struct TocResult {
   double time = 1.0;
   /// Contact or separate, never interpenetrating.
   Status status = Status::Separate;
-  /// The pairs that are not separate at `time`, with their contacts.
+  /// The pairs that are not separate at `time`, with their contacts (at an event without
+  /// TocOptions::gatherAtEvent, only those of `crossing`).
   std::vector<PairResult> pairs;
   /// Intersection tests made (each setTime + test counts one).
   int iterations = 0;

@@ -33,13 +33,27 @@ IntersectionResult Search::interpenetrationAt(double t) {
   return testPairs(narrowed ? inBracket : watched, false, false);
 }
 
-IntersectionResult Search::testPairs(const PairIds& ids, bool contacts, bool tellContactFromApart) {
+IntersectionResult Search::interpenetrationOfWatchedAt(double t) {
+  PairIds ids;
+  for (size_t k = 0; k < watched.size(); ++k)
+    if (watchedFrom[k] <= t) ids.push_back(watched[k]);
+  db.setTime(t);
+  return testPairs(ids, false, false);
+}
+
+IntersectionResult Search::contactsOfPairsAt(const PairIds& ids, double t) {
+  db.setTime(t);
+  return testPairs(ids, true, true, false);
+}
+
+IntersectionResult Search::testPairs(const PairIds& ids, bool contacts, bool tellContactFromApart, bool agesKept) {
   ++tests;
   pairTests += static_cast<long>(ids.size());
   IntersectionOptions options;
   options.contacts = contacts;
   options.tellContactFromApart = tellContactFromApart;
   options.onlyPairs = &ids;
+  options.agesKeptContacts = agesKept;
   return test4Intersection(db, ws, options);
 }
 
@@ -56,13 +70,23 @@ bool mayInterpenetrate(SeparationMemo& memo, const ObjNode& A, const ObjNode& B,
 
 }  // namespace
 
-PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting) {
+PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting,
+                                   std::vector<double>* from) {
   PairIds ids;
   db.setTime(0.0);
+  const auto rate = [](const ObjNode& o) { return o.ctrans ? o.motionRate : 0.0; };
   for (const auto& [a, b] : meeting) {
     const ObjNode& A = db.objects[a];
     const ObjNode& B = db.objects[b];
-    if (mayInterpenetrate(ws.separations, A, B, A.motionBound + B.motionBound, db.tolerance)) ids.emplace_back(a, b);
+    if (!mayInterpenetrate(ws.separations, A, B, A.motionBound + B.motionBound, db.tolerance)) continue;
+    ids.emplace_back(a, b);
+    if (!from) continue;
+    // Its points close by at most (rate A + rate B) t by time t (the memo has the
+    // separation just measured).
+    const std::optional<double> separation = ws.separations.measure(A, B);
+    const double room = separation ? *separation + (1.0 - kUnwatchedMarginFraction) * db.tolerance : 0.0;
+    const double closing = rate(A) + rate(B);
+    from->push_back(room <= 0.0 || !std::isfinite(closing) ? 0.0 : room / closing);
   }
   db.setTime(1.0);
   return ids;

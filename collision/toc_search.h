@@ -25,7 +25,11 @@ PairIds pairsThatCanMeet(const ObjectDatabase& db);
 /// convex pairs with separating axes whose separation at t = 0, less the motion bounds of
 /// both, stays above minus the tolerance (kUnwatchedMarginFraction): a pair resting in a
 /// settled stack, while a body lands on top. Leaves the database at t = 1.
-PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting);
+/// `from`, when given, receives for each pair returned the earliest time in [0, 1] at
+/// which it could interpenetrate, by the same separation and ObjNode::motionRate (0 when
+/// its separation is not measured by axes or its rates are unknown).
+PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting,
+                                   std::vector<double>* from = nullptr);
 
 /// The state of the search: the database, its workspace, the pairs that can meet in the
 /// interval, those of them that can interpenetrate, and the count of tests made.
@@ -33,7 +37,8 @@ struct Search {
   ObjectDatabase& db;
   IntersectionWorkspace& ws;
   PairIds meeting = pairsThatCanMeet(db);
-  PairIds watched = pairsThatCanInterpenetrate(db, ws, meeting);
+  std::vector<double> watchedFrom = {};  // per watched pair: the earliest time it could interpenetrate
+  PairIds watched = pairsThatCanInterpenetrate(db, ws, meeting, &watchedFrom);
   /// The watched pairs that can still interpenetrate inside the root finder's bracket,
   /// once it has narrowed them (bisect()); until then, empty and unused.
   PairIds inBracket = {};
@@ -53,10 +58,17 @@ struct Search {
   /// statusAt(t) where only interpenetration is told: a pair that does not interpenetrate
   /// may read separate though it is in contact (IntersectionOptions::tellContactFromApart).
   IntersectionResult interpenetrationAt(double t);
+  /// Sets the database to time t and returns the pairs `ids` with their contacts (not
+  /// counted as a query of contact reuse: IntersectionOptions::agesKeptContacts).
+  IntersectionResult contactsOfPairsAt(const PairIds& ids, double t);
+  /// interpenetrationAt(t) of the watched pairs that could interpenetrate by t
+  /// (watchedFrom): whether any pair interpenetrates at t, for a time found by testing a
+  /// few pairs only.
+  IntersectionResult interpenetrationOfWatchedAt(double t);
 
  private:
   /// test4Intersection() of the pairs `ids` at the objects' current poses, counted.
-  IntersectionResult testPairs(const PairIds& ids, bool contacts, bool tellContactFromApart = true);
+  IntersectionResult testPairs(const PairIds& ids, bool contacts, bool tellContactFromApart = true, bool agesKept = true);
 };
 
 PairIds interpenetratingPairs(const IntersectionResult& r);

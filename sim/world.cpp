@@ -5,7 +5,9 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "collision/broadphase.h"
 #include "collision/intersection.h"
+#include "dynamics/disjoint_sets.h"
 #include "dynamics/integrator.h"
 #include "dynamics/settings.h"
 #include "dynamics/sleep.h"
@@ -17,6 +19,7 @@ World::World(const Scene& scene, collision::TocMethod method)
     : scene_(scene), db_(buildObjectDatabase(scene)), reach_(static_cast<int>(scene.bodies.size())) {
   checkInitialState(scene_);
   tocOptions_.method = method;
+  tocOptions_.gatherAtEvent = false;  // an event's contacts are those of the groups it reaches (stepIsland)
   workspace_.reuse.enable(scene_.contact.reuseContacts);
   workspace_.separations.enable();  // its meshes live as long as the world
   for (const BodySpec& spec : scene_.bodies) {
@@ -137,6 +140,7 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
   for (const collision::PairResult& p : contacts_)
     if (std::binary_search(island.begin(), island.end(), bodies_[p.a].isStatic ? p.b : p.a)) contacts.push_back(p);
   double remaining = dt;
+  ++islandSerial_;
   for (int i : island) eventsOf_[i] = 0;
   report_.islands.push_back({static_cast<int>(island.size()), 0});
   for (int& events = report_.islands.back().events; remaining > 0;) {
@@ -146,13 +150,30 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     const double elapsed = toc.time * remaining;
     commitPoses(island, elapsed);                            // its bodies move to that state
     remaining -= elapsed;
-    contacts = std::move(toc.pairs);
-    noteContacts(contacts, time_ + (dt - remaining));
-    if (toc.stoppedBy == collision::TocStop::NoInterpenetration) break;
-    toc.pairs = contacts;
+    if (toc.stoppedBy == collision::TocStop::NoInterpenetration) {  // every pair was gathered at the step's end
+      contacts = std::move(toc.pairs);
+      noteContacts(contacts, time_ + (dt - remaining));
+      break;
+    }
     ++events;
     const bool bodyAtBound = countEventOfBodies(toc.crossing);
     const std::vector<std::pair<int, int>> crossing = toc.crossing;
+    // The event's contacts: the pairs of the groups it reaches, tested at its time; the
+    // island's other pairs keep their last test (an event elsewhere in a landing pile
+    // does not make them any more wanted). When the clock stops or nothing moved, every
+    // pair is tested: the step ends on those contacts, or a stall solves them all.
+    std::vector<char> tested(bodies_.size(), 0);
+    std::vector<char> want(bodies_.size(), 0);
+    {
+      dynamics::DisjointSets groups(static_cast<int>(bodies_.size()));
+      for (const collision::PairResult& p : contacts)
+        if (!bodies_[p.a].isStatic && !bodies_[p.b].isStatic) groups.join(p.a, p.b);
+      std::vector<char> crossed(bodies_.size(), 0);
+      for (const auto& [a, b] : crossing) crossed[groups.root(a)] = crossed[groups.root(b)] = 1;
+      for (int i : island) want[i] = crossed[groups.root(i)] || bodyAtBound || elapsed == 0.0;
+    }
+    toc.pairs = retestPairsOf(db, want, tested, contacts);
+    noteContacts(toc.pairs, time_ + (dt - remaining));
     report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
     if (bodyAtBound) {                                       // the island's clock stops (see kMaxEventsPerStep)
       report_.eventLimitHit = true;
@@ -165,18 +186,38 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
     const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
                                                 : -kStalledGapFraction * db_.tolerance;
     // A stalled event is solved on the detector's own contacts, which it disagrees with.
-    std::vector<collision::PairResult> solved = elapsed > 0.0 ? solverContacts(db, islandIds_, contacts) : contacts;
+    // The speculative test, too, covers the pairs of the bodies tested at this event
+    // (after the island's first event; its others keep their last test).
+    std::vector<char> speculated(bodies_.size(), 0);
+    const auto newlyTested = [&] {
+      std::vector<char> only(bodies_.size(), 0);
+      for (size_t i = 0; i < only.size(); ++i) only[i] = tested[i] && !speculated[i], speculated[i] = tested[i];
+      return only;
+    };
+    std::vector<collision::PairResult> solved = contacts;
+    if (elapsed > 0.0) {
+      const std::vector<char> only = newlyTested();
+      solved = solverContacts(db, islandIds_, contacts, &only);
+    }
     // Which pairs bounce is judged before the solve turns their approach into a rebound:
     // judged after it, a bounced box was taken for landed and given the rest of the step's
     // gravity at once (at dt 1 s, 9 m/s down, which it then bounced off: +12 J a step).
     const BodyPairs bouncing = bouncingPairs(contacts);
     // Only the groups of contacts the event disturbed are solved again (event_reach.h); a
     // stalled event pushes all of its contacts apart.
-    if (elapsed > 0.0) solved = reach_.reached(std::move(solved), crossing, bodies_, sizes_);
+    const auto remakeSolverContacts = [&](const std::vector<collision::PairResult>& now) {
+      const std::vector<char> only = newlyTested();
+      return solverContacts(db, islandIds_, now, &only);
+    };
+    if (elapsed > 0.0) solved = reachedAtEvent(db, std::move(solved), crossing, tested, contacts, remakeSolverContacts);
     resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
     if (supportTouchingBodies(contacts, bouncing, remaining)) {  // bodies that landed take the rest of the step's gravity,
-      if (elapsed > 0.0)                                         // and may now speculate (settled),
-        solved = reach_.reached(solverContactsOnceLanded(db, islandIds_, contacts), crossing, bodies_, sizes_);
+      if (elapsed > 0.0) {                                       // and may now speculate (settled)
+        const auto remakeOnceLanded = [&](const std::vector<collision::PairResult>& now) {
+          return solverContactsOnceLanded(db, islandIds_, now);
+        };
+        solved = reachedAtEvent(db, remakeOnceLanded(contacts), crossing, tested, contacts, remakeOnceLanded);
+      }
       resolveContacts(solved, remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
     }
   }
@@ -312,6 +353,57 @@ collision::TocResult World::detectCollisions(collision::ObjectDatabase& db) {
   for (collision::PairResult& p : toc.pairs) p.a = islandIds_[p.a], p.b = islandIds_[p.b];
   for (auto& [a, b] : toc.crossing) a = islandIds_[a], b = islandIds_[b];
   return toc;
+}
+
+std::vector<collision::PairResult> World::retestPairsOf(const collision::ObjectDatabase& db, const std::vector<char>& want,
+                                                        std::vector<char>& tested,
+                                                        std::vector<collision::PairResult>& contacts) {
+  const auto bodyAt = [this](int k) { return islandIds_.empty() ? k : islandIds_[k]; };
+  std::vector<char> now(bodies_.size(), 0);
+  bool any = false;
+  for (int k = 0; k < static_cast<int>(db.objects.size()); ++k) {
+    const int i = bodyAt(k);
+    if (want[i] && !tested[i] && !bodies_[i].isStatic) now[i] = 1, any = true;
+  }
+  if (!any) return {};
+  const auto retested = [&](int a, int b) { return (now[a] || now[b]) && !tested[a] && !tested[b]; };
+  std::vector<Eigen::AlignedBox3d> boxes;
+  std::vector<std::pair<int, int>> pairs;
+  collision::candidateObjectPairs(db, boxes, pairs);
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&](const std::pair<int, int>& p) { return !retested(bodyAt(p.first), bodyAt(p.second)); }),
+              pairs.end());
+  collision::IntersectionOptions options;
+  options.onlyPairs = &pairs;
+  options.agesKeptContacts = false;  // the island's other pairs are still wanted
+  std::vector<collision::PairResult> found = collision::test4Intersection(db, workspace_, options).pairs;
+  for (collision::PairResult& p : found) p.a = bodyAt(p.a), p.b = bodyAt(p.b);
+  contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
+                                [&](const collision::PairResult& p) { return retested(p.a, p.b); }),
+                 contacts.end());
+  contacts.insert(contacts.end(), found.begin(), found.end());
+  for (size_t i = 0; i < now.size(); ++i) tested[i] = tested[i] || now[i];
+  return found;
+}
+
+std::vector<collision::PairResult> World::reachedAtEvent(
+    const collision::ObjectDatabase& db, std::vector<collision::PairResult> solverContacts,
+    const std::vector<std::pair<int, int>>& crossing, std::vector<char>& tested, std::vector<collision::PairResult>& contacts,
+    const std::function<std::vector<collision::PairResult>(const std::vector<collision::PairResult>&)>& remake) {
+  for (;;) {
+    std::vector<collision::PairResult> reached = reach_.reached(solverContacts, crossing, bodies_, sizes_);
+    std::vector<char> want(bodies_.size(), 0);
+    bool more = false;
+    for (const collision::PairResult& p : reached)
+      for (int i : {p.a, p.b})
+        if (!bodies_[i].isStatic && !tested[i]) want[i] = 1, more = true;
+    if (!more) return reached;
+    std::vector<collision::PairResult> found = retestPairsOf(db, want, tested, contacts);
+    noteContacts(found, report_.events.back().time);
+    std::vector<collision::PairResult>& logged = report_.events.back().toc.pairs;
+    logged.insert(logged.end(), found.begin(), found.end());
+    solverContacts = remake(contacts);
+  }
 }
 
 bool World::countEventOfBodies(const std::vector<std::pair<int, int>>& crossing) {

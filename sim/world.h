@@ -3,6 +3,7 @@
 // collisionDetect(), backs up to the contact time, resolves the contacts and goes on.
 
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -161,8 +162,12 @@ class World {
   /// the speculative contacts of settled bodies (speculative_contacts.h) found in `db`
   /// (objects mapped to bodies by `bodyOf`, empty: the same), and the pairs with a body
   /// that is not convex found in the wide band (kWideBandFactor).
+  /// `only`, when given (per body) after an earlier event of the same island: the
+  /// speculative test covers only the pairs with a body it marks, the others keep their
+  /// last one (the bodies an event reaches; see stepIsland()).
   std::vector<collision::PairResult> solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                    const std::vector<collision::PairResult>& touching);
+                                                    const std::vector<collision::PairResult>& touching,
+                                                    const std::vector<char>* only = nullptr);
   /// solverContacts() again for the same poses after bodies landed (free_ cleared since
   /// the last solverContacts() or this): only the landed bodies' pairs are tested again,
   /// as they may now speculate; the others' are the last test's. A landing pile of 1000
@@ -175,7 +180,7 @@ class World {
   /// `onceLanded`: as solverContactsOnceLanded() says.
   std::vector<collision::PairResult> speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                          const std::vector<collision::PairResult>& touching,
-                                                         bool onceLanded = false);
+                                                         bool onceLanded = false, const std::vector<char>* only = nullptr);
   /// Solves `contacts` over `horizon` seconds; contacts overlapping deeper than
   /// `allowedOverlap` (m) are pushed apart (contact_solver.h). `stepStart`: the solve at
   /// the step's start, which holds the step's whole gravity; it warm-starts from the last
@@ -221,6 +226,23 @@ class World {
   collision::ObjectDatabase& databaseFor(const std::vector<int>& island);
   void predictMotion(const std::vector<int>& island, double duration);
   collision::TocResult detectCollisions(collision::ObjectDatabase& db);
+  /// An event's contacts: `contacts` (the island's, body indices, each as last tested)
+  /// with every pair of `db` that has a body `want` marks and none `tested` marks tested
+  /// again at the current poses; those bodies are then marked in `tested`. Returns the
+  /// pairs so tested that are not separate.
+  std::vector<collision::PairResult> retestPairsOf(const collision::ObjectDatabase& db, const std::vector<char>& want,
+                                                   std::vector<char>& tested,
+                                                   std::vector<collision::PairResult>& contacts);
+  /// The pairs of `solverContacts` in the groups an event reaches (EventReach::reached),
+  /// every one of them tested at the event's time: while a reached group holds a body
+  /// whose pairs were not (retestPairsOf()), they are, and `remake` gives the solver's
+  /// contacts again from the island's contacts. The event's pairs (report_.events.back())
+  /// gain each pair tested.
+  std::vector<collision::PairResult> reachedAtEvent(
+      const collision::ObjectDatabase& db, std::vector<collision::PairResult> solverContacts,
+      const std::vector<std::pair<int, int>>& crossing, std::vector<char>& tested,
+      std::vector<collision::PairResult>& contacts,
+      const std::function<std::vector<collision::PairResult>(const std::vector<collision::PairResult>&)>& remake);
   /// Counts an event against the dynamic bodies of the pairs that caused it (`crossing`,
   /// body indices); true when one of them has reached kMaxEventsPerStep in this step.
   bool countEventOfBodies(const std::vector<std::pair<int, int>>& crossing);
@@ -262,6 +284,8 @@ class World {
   /// solverContactsOnceLanded(): valid only for the poses it tested.
   std::vector<collision::PairResult> speculativeFound_;
   std::vector<char> speculatedFree_;
+  long islandSerial_ = 0;        // counts stepIsland() calls
+  long speculativeIsland_ = -1;  // the call whose whole island speculativeFound_ was last tested for
   std::vector<Eigen::AlignedBox3d> stepBounds_;  // per body: its swept bounds this step (islandsOfStep)
   bool watchBounds_ = false;  // several islands step: each body must stay within its stepBounds_
   bool outgrown_ = false;     // one did not (outgrewItsBounds)

@@ -12,8 +12,9 @@
 namespace polysim::sim {
 
 std::vector<collision::PairResult> World::solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
-                                                         const std::vector<collision::PairResult>& touching) {
-  return withWideBand(db, bodyOf, speculativeContacts(db, bodyOf, touching));
+                                                         const std::vector<collision::PairResult>& touching,
+                                                         const std::vector<char>* only) {
+  return withWideBand(db, bodyOf, speculativeContacts(db, bodyOf, touching, false, only));
 }
 
 std::vector<collision::PairResult> World::solverContactsOnceLanded(const collision::ObjectDatabase& db,
@@ -24,7 +25,7 @@ std::vector<collision::PairResult> World::solverContactsOnceLanded(const collisi
 
 std::vector<collision::PairResult> World::speculativeContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                               const std::vector<collision::PairResult>& touching,
-                                                              bool onceLanded) {
+                                                              bool onceLanded, const std::vector<char>* only) {
   const double reach = scene_.contact.speculativeReach;
   if (reach <= 0.0) return touching;
   // Bodies flying free keep their exact parabolas and impacts (backed up to just
@@ -49,8 +50,15 @@ std::vector<collision::PairResult> World::speculativeContacts(const collision::O
   };
   const auto speculate = [this, convexOrOnStatic](const collision::PairResult& p) { return convexOrOnStatic(p) && !bounces(p); };
   const auto roleOf = [&](int k) { return roleOfBody(bodyAt(k)); };
-  if (!onceLanded) {
+  if (!onceLanded && only && speculativeIsland_ == islandSerial_) {  // the island's others keep their last test
+    const auto retested = [only](const collision::PairResult& p) { return (*only)[p.a] || (*only)[p.b]; };
+    speculativeFound_.erase(std::remove_if(speculativeFound_.begin(), speculativeFound_.end(), retested),
+                            speculativeFound_.end());
+    for (collision::PairResult& p : speculativePairs(db, workspace_, reach, bodyOf, roleOf, only))
+      speculativeFound_.push_back(std::move(p));
+  } else if (!onceLanded) {
     speculativeFound_ = speculativePairs(db, workspace_, reach, bodyOf, roleOf);
+    speculativeIsland_ = islandSerial_;
   } else {  // the poses, and every other body's role, are the last test's: only the landed bodies' pairs are new
     std::vector<char> landed(bodies_.size(), 0);
     for (size_t i = 0; i < bodies_.size(); ++i) landed[i] = speculatedFree_[i] && !free_[i];
