@@ -31,10 +31,11 @@ bool EventReach::disturbed(int body, const dynamics::RigidBody& state) const {
   return s.stamp != stamp_ || s.velocity != state.velocity || s.angularVelocity != state.angularVelocity;
 }
 
-std::vector<char> EventReach::reachedRoots(const std::vector<collision::PairResult>& contacts,
-                                           const std::vector<std::pair<int, int>>& crossing,
-                                           const std::vector<dynamics::RigidBody>& bodies, const std::vector<double>& sizes,
-                                           dynamics::DisjointSets& groups) const {
+std::vector<collision::PairResult> EventReach::reached(std::vector<collision::PairResult> contacts,
+                                                       const std::vector<std::pair<int, int>>& crossing,
+                                                       const std::vector<dynamics::RigidBody>& bodies,
+                                                       const std::vector<double>& sizes) const {
+  dynamics::DisjointSets groups(static_cast<int>(bodies.size()));
   for (const collision::PairResult& p : contacts)
     if (!bodies[p.a].isStatic && !bodies[p.b].isStatic) groups.join(p.a, p.b);
   std::vector<char> reachedRoot(bodies.size(), 0);  // per group root
@@ -65,33 +66,12 @@ std::vector<char> EventReach::reachedRoots(const std::vector<collision::PairResu
     }
   for (size_t root = 0; root < motionOf.size(); ++root)
     if (motionOf[root].seen && !motionOf[root].someFast && !motionOf[root].allRested) reachedRoot[root] = 1;
-  return reachedRoot;
-}
-
-std::vector<collision::PairResult> EventReach::reached(std::vector<collision::PairResult> contacts,
-                                                       const std::vector<std::pair<int, int>>& crossing,
-                                                       const std::vector<dynamics::RigidBody>& bodies,
-                                                       const std::vector<double>& sizes) const {
-  dynamics::DisjointSets groups(static_cast<int>(bodies.size()));
-  const std::vector<char> reachedRoot = reachedRoots(contacts, crossing, bodies, sizes, groups);
   contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
                                 [&](const collision::PairResult& p) {
                                   return !reachedRoot[groups.root(bodies[p.a].isStatic ? p.b : p.a)];
                                 }),
                  contacts.end());
   return contacts;
-}
-
-std::vector<char> EventReach::reachedBodies(const std::vector<collision::PairResult>& contacts,
-                                            const std::vector<std::pair<int, int>>& crossing,
-                                            const std::vector<dynamics::RigidBody>& bodies,
-                                            const std::vector<double>& sizes) const {
-  dynamics::DisjointSets groups(static_cast<int>(bodies.size()));
-  const std::vector<char> reachedRoot = reachedRoots(contacts, crossing, bodies, sizes, groups);
-  std::vector<char> reached(bodies.size(), 0);
-  for (size_t i = 0; i < bodies.size(); ++i)
-    reached[i] = !bodies[i].isStatic && reachedRoot[groups.root(static_cast<int>(i))];
-  return reached;
 }
 
 }  // namespace polysim::sim

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "collision/contact.h"
-#include "dynamics/disjoint_sets.h"
 #include "dynamics/rigid_body.h"
 
 namespace polysim::sim {
@@ -46,18 +45,7 @@ class EventReach {
                                              const std::vector<dynamics::RigidBody>& bodies,
                                              const std::vector<double>& sizes) const;
 
-  /// Per body: it is dynamic and in a group reached() would keep (a body in no pair of
-  /// `contacts` is a group of its own, reached when it crosses).
-  std::vector<char> reachedBodies(const std::vector<collision::PairResult>& contacts,
-                                  const std::vector<std::pair<int, int>>& crossing,
-                                  const std::vector<dynamics::RigidBody>& bodies, const std::vector<double>& sizes) const;
-
  private:
-  /// Per group root of `groups` (joined here from `contacts`): the group is reached.
-  std::vector<char> reachedRoots(const std::vector<collision::PairResult>& contacts,
-                                 const std::vector<std::pair<int, int>>& crossing,
-                                 const std::vector<dynamics::RigidBody>& bodies, const std::vector<double>& sizes,
-                                 dynamics::DisjointSets& groups) const;
   static std::uint64_t key(int a, int b);
   bool disturbed(int body, const dynamics::RigidBody& state) const;
 
