@@ -24,6 +24,18 @@ class SeparationMemo {
   /// objects, meshes and poses (compared exactly, so nothing is approximated).
   std::optional<double> measure(const ObjNode& a, const ObjNode& b);
 
+  /// A lower bound (m) on the signed distance of a and b at their current poses (their
+  /// distance apart; overlapping, minus their penetration depth), from the measure kept
+  /// for the pair at whatever poses it was made: that measure, less how far any point of
+  /// either has moved since. The measure never exceeds the signed distance (apart, the
+  /// widest gap along the axes is at most the distance; overlapping, it is minus the
+  /// depth), and the signed distance changes by no more than the points move. Empty when
+  /// nothing is kept for the pair or it was not measured by axes. Lets a caller that only
+  /// needs the pair far enough apart skip measuring it: in a landing pile most pairs an
+  /// event's search looks at are a few millimetres apart or more, and their bodies have
+  /// moved a fraction of that since the last event measured them.
+  std::optional<double> lowerBound(const ObjNode& a, const ObjNode& b) const;
+
   /// How many measures were answered from the memo since it was enabled.
   long hits() const { return hits_; }
 
@@ -37,7 +49,9 @@ class SeparationMemo {
   };
   // Direct-mapped by the pair's ids: a pair's newer measure replaces whatever held its
   // slot, so memory stays fixed (kSlots entries) however many pairs a scene has.
-  static constexpr size_t kSlots = 4096;
+  static constexpr size_t kSlots = 16384;
+  const Entry* entryOf(const ObjNode& a, const ObjNode& b) const;
+  Entry& slotOf(const ObjNode& a, const ObjNode& b);
   std::vector<Entry> slots_;
   long hits_ = 0;
 };

@@ -168,9 +168,12 @@ TocResult collisionDetect(ObjectDatabase& db, IntersectionWorkspace& workspace, 
     result.crossing = std::move(bracket->hiPairs);
   }
 
-  if (!found.atTime) {
-    found.atTime = bracket && !options.gatherAtEvent ? s.contactsOfPairsAt(result.crossing, found.time)
-                                                     : s.statusAt(found.time, true);
+  if (!found.atTime && bracket && !options.gatherAtEvent) {
+    found.atTime = s.contactsOfPairsAt(result.crossing, found.time);
+    for (const std::pair<int, int>& p : s.nearingAt(found.time))
+      if (std::find(result.crossing.begin(), result.crossing.end(), p) == result.crossing.end()) result.nearing.push_back(p);
+  } else if (!found.atTime) {
+    found.atTime = s.statusAt(found.time, true);
   }
   result.time = found.time;
   result.status = found.atTime->status;

@@ -70,6 +70,12 @@ struct TocResult {
   /// The pairs (object indices, a < b) found interpenetrating just past `time`: what
   /// stopped the interval there. Empty when nothing interpenetrated up to t = 1.
   std::vector<std::pair<int, int>> crossing;
+  /// At an event without TocOptions::gatherAtEvent: the pairs other than `crossing` among
+  /// those that can interpenetrate in the interval (pairsWatched) that may have come
+  /// within the band by `time` (toc::Search::nearingAt()), whose contacts were not
+  /// gathered (a pair that cannot interpenetrate in it is gathered at its end). A caller that keeps contacts from earlier tests retests those it
+  /// does not hold.
+  std::vector<std::pair<int, int>> nearing;
   /// Pairs that can meet in the interval, and those of them the search's verdict tests
   /// watched: the pairs that can interpenetrate in it (a settled stack's resting pairs
   /// cannot while a body lands on top). The contacts returned are of every pair that can meet.

@@ -36,9 +36,20 @@ IntersectionResult Search::interpenetrationAt(double t) {
 IntersectionResult Search::interpenetrationOfWatchedAt(double t) {
   PairIds ids;
   for (size_t k = 0; k < watched.size(); ++k)
-    if (watchedFrom[k] <= t) ids.push_back(watched[k]);
+    if (watchedFrom.interpenetrating[k] <= t) ids.push_back(watched[k]);
   db.setTime(t);
   return testPairs(ids, false, false);
+}
+
+PairIds Search::nearingAt(double t) {
+  PairIds ids;
+  for (size_t k = 0; k < watched.size(); ++k) {
+    if (watchedFrom.touching[k] > t) continue;
+    const auto [a, b] = watched[k];
+    const std::optional<double> separation = ws.separations.measure(db.objects[a], db.objects[b]);
+    if (!separation || *separation <= db.tolerance) ids.push_back(watched[k]);
+  }
+  return ids;
 }
 
 IntersectionResult Search::contactsOfPairsAt(const PairIds& ids, double t) {
@@ -64,14 +75,18 @@ namespace {
 // depth of interpenetration by a margin (kUnwatchedMarginFraction): then no pose within
 // that motion interpenetrates.
 bool mayInterpenetrate(SeparationMemo& memo, const ObjNode& A, const ObjNode& B, double motion, double tolerance) {
+  const double least = -(1.0 - kUnwatchedMarginFraction) * tolerance;
+  // Far enough apart by the last measure, less how far both have moved since: no need to
+  // measure again (the verdict cannot be interpenetrating either way).
+  if (const std::optional<double> bound = memo.lowerBound(A, B); bound && *bound - motion > least) return false;
   const std::optional<double> separation = memo.measure(A, B);
-  return !separation || *separation - motion <= -(1.0 - kUnwatchedMarginFraction) * tolerance;
+  return !separation || *separation - motion <= least;
 }
 
 }  // namespace
 
 PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting,
-                                   std::vector<double>* from) {
+                                   WatchedFrom* from) {
   PairIds ids;
   db.setTime(0.0);
   const auto rate = [](const ObjNode& o) { return o.ctrans ? o.motionRate : 0.0; };
@@ -84,9 +99,12 @@ PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws
     // Its points close by at most (rate A + rate B) t by time t (the memo has the
     // separation just measured).
     const std::optional<double> separation = ws.separations.measure(A, B);
-    const double room = separation ? *separation + (1.0 - kUnwatchedMarginFraction) * db.tolerance : 0.0;
     const double closing = rate(A) + rate(B);
-    from->push_back(room <= 0.0 || !std::isfinite(closing) ? 0.0 : room / closing);
+    const auto timeToClose = [&](double room) {
+      return !separation || room <= 0.0 || !std::isfinite(closing) ? 0.0 : room / closing;
+    };
+    from->interpenetrating.push_back(timeToClose(separation.value_or(0.0) + (1.0 - kUnwatchedMarginFraction) * db.tolerance));
+    from->touching.push_back(timeToClose(separation.value_or(0.0) - db.tolerance));
   }
   db.setTime(1.0);
   return ids;

@@ -25,11 +25,16 @@ PairIds pairsThatCanMeet(const ObjectDatabase& db);
 /// convex pairs with separating axes whose separation at t = 0, less the motion bounds of
 /// both, stays above minus the tolerance (kUnwatchedMarginFraction): a pair resting in a
 /// settled stack, while a body lands on top. Leaves the database at t = 1.
-/// `from`, when given, receives for each pair returned the earliest time in [0, 1] at
-/// which it could interpenetrate, by the same separation and ObjNode::motionRate (0 when
-/// its separation is not measured by axes or its rates are unknown).
+/// `from`, when given, receives for each pair returned the earliest times in [0, 1] at
+/// which it could interpenetrate and come within the band, by the same separation and
+/// ObjNode::motionRate (0 when its separation is not measured by axes or its rates are
+/// unknown).
+struct WatchedFrom {
+  std::vector<double> interpenetrating;
+  std::vector<double> touching;
+};
 PairIds pairsThatCanInterpenetrate(ObjectDatabase& db, IntersectionWorkspace& ws, const PairIds& meeting,
-                                   std::vector<double>* from = nullptr);
+                                   WatchedFrom* from = nullptr);
 
 /// The state of the search: the database, its workspace, the pairs that can meet in the
 /// interval, those of them that can interpenetrate, and the count of tests made.
@@ -37,7 +42,7 @@ struct Search {
   ObjectDatabase& db;
   IntersectionWorkspace& ws;
   PairIds meeting = pairsThatCanMeet(db);
-  std::vector<double> watchedFrom = {};  // per watched pair: the earliest time it could interpenetrate
+  WatchedFrom watchedFrom = {};  // per watched pair: the earliest times it could interpenetrate, or touch
   PairIds watched = pairsThatCanInterpenetrate(db, ws, meeting, &watchedFrom);
   /// The watched pairs that can still interpenetrate inside the root finder's bracket,
   /// once it has narrowed them (bisect()); until then, empty and unused.
@@ -65,6 +70,10 @@ struct Search {
   /// (watchedFrom): whether any pair interpenetrates at t, for a time found by testing a
   /// few pairs only.
   IntersectionResult interpenetrationOfWatchedAt(double t);
+  /// The watched pairs that may be within the band at t (the database's current time):
+  /// those that could touch by t (watchedFrom) whose separation by the axes is at most
+  /// the tolerance, and every one not measured by axes.
+  PairIds nearingAt(double t);
 
  private:
   /// test4Intersection() of the pairs `ids` at the objects' current poses, counted.

@@ -170,6 +170,16 @@ void World::stepIsland(const std::vector<int>& island, double dt, std::vector<co
         if (!bodies_[p.a].isStatic && !bodies_[p.b].isStatic) groups.join(p.a, p.b);
       std::vector<char> crossed(bodies_.size(), 0);
       for (const auto& [a, b] : crossing) crossed[groups.root(a)] = crossed[groups.root(b)] = 1;
+      // A pair that may have come within the band and has no contacts yet is a new touch,
+      // as an event's is: found only once it interpenetrated, it would be an event of its
+      // own, and an approach left unsolved keeps its pairs in every bisection's tests.
+      const auto ordered = [](int a, int b) { return std::pair{std::min(a, b), std::max(a, b)}; };
+      std::vector<std::pair<int, int>> held;
+      if (!toc.nearing.empty())
+        for (const collision::PairResult& p : contacts) held.push_back(ordered(p.a, p.b));
+      std::sort(held.begin(), held.end());
+      for (const auto& [a, b] : toc.nearing)
+        if (!std::binary_search(held.begin(), held.end(), ordered(a, b))) crossed[groups.root(a)] = crossed[groups.root(b)] = 1;
       for (int i : island) want[i] = crossed[groups.root(i)] || bodyAtBound || elapsed == 0.0;
     }
     toc.pairs = retestPairsOf(db, want, tested, contacts);
@@ -352,6 +362,7 @@ collision::TocResult World::detectCollisions(collision::ObjectDatabase& db) {
   for (size_t k = 0; k < islandIds_.size(); ++k) db_.objects[islandIds_[k]].X_WO = db.objects[k].X_WO;
   for (collision::PairResult& p : toc.pairs) p.a = islandIds_[p.a], p.b = islandIds_[p.b];
   for (auto& [a, b] : toc.crossing) a = islandIds_[a], b = islandIds_[b];
+  for (auto& [a, b] : toc.nearing) a = islandIds_[a], b = islandIds_[b];
   return toc;
 }
 
