@@ -151,7 +151,10 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
       if (!options.contacts) pair.contacts.clear();  // a verdict-only test reports none
     } else {
       std::optional<double> separation;
-      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested, &separation);
+      // The separation is wanted only to keep contacts (a verdict-only test may then skip
+      // measuring a pair the memo's bound shows apart).
+      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested,
+                            options.contacts ? &separation : nullptr);
       if (options.contacts) ws.reuse.keep(db, pair, separation);
     }
     if (pair.status == Status::Separate) continue;

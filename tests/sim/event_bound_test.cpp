@@ -127,5 +127,41 @@ TEST(EventBound, ABoxBouncingInLongStepsNeverGainsEnergy) {
   }
 }
 
+// An event tests again the groups of pairs that came within the band without contacts
+// (TocResult::nearing), not only the group of the pair that caused it. Box "fast" is
+// thrown down and lands at about t = 0.01 s; box "slow", 1 cm beside it (one island),
+// is let go from rest 5.4 bands above the floor, so at that time gravity has taken it to
+// half a band above the floor, and it would interpenetrate at 0.0114 s. Its pair with
+// the floor is tested at the landing's event and solved there: the step has that one
+// event, whose pairs hold both boxes' contacts with the floor. Found only once it
+// interpenetrated, its landing would be an event of its own.
+TEST(EventBound, AnEventTestsThePairsThatCameWithinTheBandElsewhereInItsIsland) {
+  constexpr double eps = 1e-4;
+  const double tLand = 0.01, speed = 1.0;
+  const double fastGap = speed * tLand + 0.5 * g * tLand * tLand;
+  const double slowGap = 0.5 * g * tLand * tLand + 0.5 * eps;
+  const std::string path = ::polysim::test::tempPath("event_nearing.json");
+  std::ofstream(path) << R"({"dt": 0.016666666666666666, "duration": 0.1, "contact": {"tolerance": 0.0001},)"
+                      << R"( "sleep": {"enabled": false}, "bodies": [)"
+                      << R"({"name": "floor", "static": true, "shape": {"type": "box", "size": [10, 10, 1]}, "position": [0, 0, -0.5]},)"
+                      << R"( {"name": "fast", "shape": {"type": "box", "size": [1, 1, 1]}, "velocity": [0, 0, -1], "position": [0, 0, )"
+                      << std::to_string(0.5 + fastGap) << "]},"
+                      << R"( {"name": "slow", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [1.01, 0, )"
+                      << std::to_string(0.5 + slowGap) << "]}]}\n";
+  World w(loadScene(path));
+  const int floor = test::bodyIndex(w, "floor"), fast = test::bodyIndex(w, "fast"), slow = test::bodyIndex(w, "slow");
+  const StepReport& r = w.step(w.scene().dt);
+  ASSERT_EQ(r.islands.size(), 1u) << "the two boxes step as one island";
+  ASSERT_EQ(r.events.size(), 1u) << "the slow box's landing was an event of its own";
+  const StepEvent& e = r.events[0];
+  EXPECT_NEAR(e.time, tLand, 2 * eps / speed);
+  EXPECT_EQ(e.toc.crossing, (std::vector<std::pair<int, int>>{bodyPair(floor, fast)}));
+  BodyPairs tested;
+  for (const collision::PairResult& p : e.toc.pairs)
+    if (!p.contacts.empty()) tested.insert(bodyPair(p.a, p.b));
+  EXPECT_EQ(tested, (BodyPairs{bodyPair(floor, fast), bodyPair(floor, slow)}));
+  EXPECT_GE(w.bodies()[slow].position.z(), 0.5 - eps) << "the slow box is held by the floor";
+}
+
 }  // namespace
 }  // namespace polysim::sim
