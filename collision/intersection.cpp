@@ -24,11 +24,6 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
   const double eps = db.tolerance;
   const std::optional<Eigen::AlignedBox3d> region = overlapRegion(A, B, eps);
   if (!region || separatedAlongCentreLine(A, B, eps)) return result;
-  // Where only interpenetration is told, a pair apart by the last measure less how far
-  // both have moved since is apart now, and the measure below would say so.
-  if (!options.contacts && !options.tellContactFromApart && !axesSeparation) {
-    if (const std::optional<double> bound = ws.separations.lowerBound(A, B); bound && *bound > 0.0) return result;
-  }
   // Convex objects interpenetrate when their penetration depth (the least translation
   // that parts them, by the separating axis test) exceeds eps. That depth is what the
   // contacts' gaps measure: along a face's normal for a vertex, along the common normal
@@ -151,10 +146,7 @@ IntersectionResult test4Intersection(const ObjectDatabase& db, IntersectionWorks
       if (!options.contacts) pair.contacts.clear();  // a verdict-only test reports none
     } else {
       std::optional<double> separation;
-      // The separation is wanted only to keep contacts (a verdict-only test may then skip
-      // measuring a pair the memo's bound shows apart).
-      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested,
-                            options.contacts ? &separation : nullptr);
+      pair = testObjectPair(db, first, second, ws, options, &result.polygonPairsTested, &separation);
       if (options.contacts) ws.reuse.keep(db, pair, separation);
     }
     if (pair.status == Status::Separate) continue;

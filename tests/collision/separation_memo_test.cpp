@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "collision/convex_separation.h"
-#include "collision/intersection.h"
 #include "collision/shapes.h"
 #include "tests/test_support.h"
 
@@ -135,44 +134,6 @@ TEST(SeparationMemo, LowerBoundNeverExceedsTheSignedDistanceAfterRandomMotions) 
   // Both cases are met often, and the bound is not so loose that it never proves a pair apart.
   EXPECT_GT(overlapping, 200);
   EXPECT_GT(apartKept, 100);
-}
-
-// Verdict-only tests (only interpenetration told) with the memo holding a measure of
-// each pair at an earlier pose: the same status as a fresh test, though the memo's
-// bound lets them skip pairs it proves apart. Random tilted boxes placed within a few
-// bands of touching, each measured first a little higher and turned a little.
-TEST(SeparationMemo, VerdictOnlyTestsDecideAsWithoutTheMemo) {
-  ObjectDatabase db;
-  db.tolerance = 1e-4;
-  const double eps = db.tolerance;
-  db.add("A", std::make_shared<PolygonMesh>(makeBox(V3(1, 0.5, 0.3))), pose(V3::Zero()), false);
-  db.add("B", std::make_shared<PolygonMesh>(makeBox(V3(0.4, 0.8, 0.6))), pose(V3::Zero()), false);
-  std::mt19937 rng(17);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  IntersectionOptions verdict;
-  verdict.contacts = false;
-  verdict.tellContactFromApart = false;
-  int touching = 0, skipped = 0;
-  for (int trial = 0; trial < 1000; ++trial) {
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3 * u(rng), V3(u(rng), u(rng), 1.0).normalized()).toRotationMatrix();
-    ObjNode& b = db.objects[1];
-    b.X_WO = pose(V3(0.2 * u(rng), 0.2 * u(rng), 1.0), R);
-    b.X_WO.translation().z() -= *convexSeparation(db.objects[0], b) + (1.0 - 3.0 * (u(rng) + 1.0) / 2.0) * eps;
-    const Eigen::Isometry3d now = b.X_WO;
-    IntersectionWorkspace memoized;
-    memoized.separations.enable();
-    b.X_WO = pose(now.translation() + V3(0, 0, 3.0 * eps * (u(rng) + 1.0) / 2.0),
-                  Eigen::AngleAxisd(1e-4 * u(rng), V3::UnitX()).toRotationMatrix() * now.linear());
-    memoized.separations.measure(db.objects[0], b);
-    b.X_WO = now;
-    skipped += memoized.separations.lowerBound(db.objects[0], b) > 0.0;
-    IntersectionWorkspace fresh;
-    const Status expected = test4Intersection(db, fresh, verdict).status;
-    EXPECT_EQ(test4Intersection(db, memoized, verdict).status, expected) << "trial " << trial;
-    touching += expected == Status::Contact;
-  }
-  EXPECT_GT(touching, 100);
-  EXPECT_GT(skipped, 100);
 }
 
 // A pair measured in one order is not bounded in the other, nor with another mesh.
