@@ -226,6 +226,14 @@ class World {
   collision::ObjectDatabase& databaseFor(const std::vector<int>& island);
   void predictMotion(const std::vector<int>& island, double duration);
   collision::TocResult detectCollisions(collision::ObjectDatabase& db);
+  /// The bodies of `island` an event reaches (world_event_reach.cpp), marked by body
+  /// index: those in a group of `contacts` (joined by contacts between dynamic bodies)
+  /// with a body of a crossing pair of `toc`, or of a pair of toc.nearing that `contacts`
+  /// holds none for. With `everyBody` (the island's clock stops, or the event came with
+  /// no time elapsed) every body of the island.
+  std::vector<char> bodiesAnEventReaches(const std::vector<int>& island,
+                                         const std::vector<collision::PairResult>& contacts,
+                                         const collision::TocResult& toc, bool everyBody) const;
   /// An event's contacts: `contacts` (the island's, body indices, each as last tested)
   /// with every pair of `db` that has a body `want` marks and none `tested` marks tested
   /// again at the current poses; those bodies are then marked in `tested`. Returns the
