@@ -5,6 +5,7 @@
 // its work (README, "Events that test and solve only what they reach").
 
 #include <algorithm>
+#include <iterator>
 
 #include "collision/broadphase.h"
 #include "collision/intersection.h"
@@ -85,7 +86,7 @@ std::vector<collision::PairResult> World::reachedAtEvent(
     std::vector<collision::PairResult> found = retestPairsOf(db, want, tested, contacts);
     noteContacts(found, report_.events.back().time);
     std::vector<collision::PairResult>& logged = report_.events.back().toc.pairs;
-    logged.insert(logged.end(), found.begin(), found.end());
+    logged.insert(logged.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
     solverContacts = remake(contacts);
   }
 }
