@@ -1,7 +1,7 @@
-// Islands redone (World::stepIslands, outgrewItsBounds, takeBack): an event's impulse can
-// send a body beyond the swept bounds its island was found by, into another island's. The
-// two islands are taken back to the step's start and step again as one, so the pair meets
-// at its own event.
+// Islands joined (World::stepIslands, joinIslandsReached): an event's impulse can turn a
+// body towards another island's. The islands take their events in time order, so the
+// other island's clock stands at or before the event; it is moved to the event and the
+// two go on as one, so the pair meets at its own event.
 
 #include <gtest/gtest.h>
 
@@ -70,7 +70,7 @@ void expectCradleStep(const Cradle& s) {
   const double xB = 1.0 + s.gapAB, xC = xB + 1.0 + s.gapBC;
   const double strikesB = s.gapAB / s.speed, strikesC = (s.gapAB + s.gapBC) / (s.speed - s.drift);
   const StepReport& r = w.step(s.dt);
-  EXPECT_EQ(r.islandsRedone, 1);
+  EXPECT_EQ(r.islandsJoined, 1);
   EXPECT_EQ(r.events.size(), 2u);
   ASSERT_EQ(r.islands.size(), 1u);  // the two islands ended as one
   EXPECT_EQ(r.islands.front().bodies, 4);
@@ -186,7 +186,7 @@ void expectRowMovesAsFreePoints(const Row& row, double dt, int steps, int& redon
   for (double v : row.v) energy += 0.5 * v * v;
   for (int step = 1; step <= steps; ++step) {
     const StepReport& r = w.step(dt);
-    redone += r.islandsRedone;
+    redone += r.islandsJoined;
     const double t = step * dt;
     std::vector<std::pair<double, double>> points;  // free points at t: position, speed
     for (int k = 0; k < boxes; ++k) points.emplace_back(row.x[k] - k + row.v[k] * t, row.v[k]);
@@ -213,8 +213,9 @@ TEST(IslandsRedone, SeededElasticRowsMoveAsFreePointsPassingThrough) {
 }
 
 // A strikes B at 0.03 s, and B can then reach C, of the other island; but C is struck by
-// E at 0.0018 s and in fact strikes B at 0.02 s, before A does. Taken back and stepped as
-// one island, the row meets each of these at its own time.
+// E at 0.0018 s and in fact strikes B at 0.02 s, before A does. Joined as one island
+// from the first event that turns a body towards the other, the row meets each of these
+// at its own time.
 TEST(IslandsRedone, AnIslandReachingIntoOneWhoseOwnEventComesFirst) {
   int redone = 0;
   expectRowMovesAsFreePoints({{0.0, 1.3, 2.5, 3.52}, {10.0, 0.0, 0.0, -11.0}}, 0.1, 3, redone);
