@@ -215,6 +215,8 @@ class World {
     std::vector<collision::PairResult> contacts;  // as last tested, body indices
     int reportEntry = -1;  // its entry in report_.islands
     long serial = 0;       // islandSerial_ while it is its island (speculativeContacts)
+    std::vector<collision::PairResult> speculativeFound;  // its last speculative test (speculativeFound_)
+    long speculativeSerial = -1;                           // and the serial it was made for
     enum class State { Asleep, Stepping, Stopped, Joined } state = State::Asleep;
   };
   /// The island wakes and starts the step: its contacts, its report entry, its bodies'

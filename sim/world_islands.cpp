@@ -60,7 +60,12 @@ void World::stepIslands(const std::vector<std::vector<int>>& islands, double dt,
       if (next < 0 || at < nextAt) next = static_cast<int>(k), nextAt = at;
     }
     if (next < 0) break;
-    const std::vector<int> turned = takeEvent(runs_[next], dt);
+    IslandRun& taking = runs_[next];
+    std::swap(speculativeFound_, taking.speculativeFound);  // its own last test, whatever islands took events since
+    speculativeIsland_ = taking.speculativeSerial;
+    const std::vector<int> turned = takeEvent(taking, dt);
+    std::swap(speculativeFound_, taking.speculativeFound);
+    taking.speculativeSerial = speculativeIsland_;
     if (runs_.size() > 1) joinIslandsReached(next, turned, dt - runs_[next].remaining, dt, stepped);
     if (runs_[next].state == IslandRun::State::Stepping) findNextEvent(runs_[next]);
   }
