@@ -231,6 +231,9 @@ class World {
   /// Moves the island's clock to the step's end, where it found no event, and keeps its
   /// contacts there.
   void finishIsland(IslandRun& run, double dt);
+  /// Body `i`'s path over the next `duration` s from its box `start` (islands.h): its
+  /// velocity, gravity and turn as predictMotion() moves it; `swept` is left as `start`.
+  SweptBody pathFrom(int i, const Eigen::AlignedBox3d& start, double duration) const;
   /// Where body `i` is along its path at `t` s into the step of `dt`, and its path from
   /// there (islands.h), whatever island holds it and wherever that island's clock stands.
   SweptBody pathAt(int i, double t, double dt) const;

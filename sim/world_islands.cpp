@@ -12,21 +12,26 @@
 
 namespace polysim::sim {
 
+SweptBody World::pathFrom(int i, const Eigen::AlignedBox3d& start, double duration) const {
+  const dynamics::RigidBody& b = bodies_[i];
+  SweptBody path;
+  path.start = path.swept = start;
+  path.dynamic = !b.isStatic;
+  if (b.isStatic) return path;
+  path.velocity = b.velocity + b.pushVelocity;  // as predictMotion() gives it (body_path.h)
+  path.gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
+  path.turn = (b.angularVelocity + b.pushAngularVelocity).norm() * sizes_[i] * duration;
+  return path;
+}
+
 std::vector<std::vector<int>> World::islandsOfStep(double duration) {
   sweptBodies_.assign(bodies_.size(), SweptBody());
   for (size_t i = 0; i < bodies_.size(); ++i) {
-    const dynamics::RigidBody& b = bodies_[i];
-    SweptBody& s = sweptBodies_[i];
     // Grown by the tolerance: bodies that end the step within it of each other (in
     // contact) share an island, so a sleeping body never touches one that is awake.
-    s.start = collision::grow(collision::worldContainer(db_.objects[i]), db_.tolerance);
-    s.swept = s.start;
-    s.dynamic = !b.isStatic;
-    if (b.isStatic) continue;
-    s.gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
-    s.velocity = b.velocity + b.pushVelocity;  // the path's (body_path.h)
-    s.turn = (b.angularVelocity + b.pushAngularVelocity).norm() * sizes_[i] * duration;
-    s.swept = collision::grow(s.start, pathMotionBound(b, sizes_[i], duration, s.gravity));
+    SweptBody& s = sweptBodies_[i] = pathFrom(static_cast<int>(i),
+        collision::grow(collision::worldContainer(db_.objects[i]), db_.tolerance), duration);
+    if (s.dynamic) s.swept = collision::grow(s.start, pathMotionBound(bodies_[i], sizes_[i], duration, s.gravity));
   }
   std::vector<std::pair<int, int>> touching;
   for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
@@ -83,20 +88,17 @@ void World::stepIslands(const std::vector<std::vector<int>>& islands, double dt,
 SweptBody World::pathAt(int i, double t, double dt) const {
   const IslandRun& run = runs_[runOf_[i]];
   if (run.state == IslandRun::State::Asleep) return alongPath(sweptBodies_[i], t, dt);  // at rest all step
-  const dynamics::RigidBody& b = bodies_[i];
-  const collision::ObjNode& node = db_.objects[i];
-  SweptBody now;
-  now.start = collision::grow(collision::transformBox(b.pose(), node.grid->container()), db_.tolerance);
-  now.swept = now.start;
-  now.dynamic = true;
-  if (run.state == IslandRun::State::Stopped) return now;  // its clock stopped: it moves no more this step
+  const Eigen::AlignedBox3d here =
+      collision::grow(collision::transformBox(bodies_[i].pose(), db_.objects[i].grid->container()), db_.tolerance);
+  if (run.state == IslandRun::State::Stopped) {  // its clock stopped: it moves no more this step
+    SweptBody still;
+    still.start = still.swept = here;
+    still.dynamic = true;
+    return still;
+  }
   // Its island's clock stands at or before t; its path from there is the one
   // findNextEvent() gave it (predictMotion).
-  const double clock = dt - run.remaining;
-  now.velocity = b.velocity + b.pushVelocity;
-  now.gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();  // as predictMotion() gives it
-  now.turn = (b.angularVelocity + b.pushAngularVelocity).norm() * sizes_[i] * run.remaining;
-  return alongPath(now, t - clock, run.remaining);
+  return alongPath(pathFrom(i, here, run.remaining), t - (dt - run.remaining), run.remaining);
 }
 
 void World::joinIslandsReached(int k, const std::vector<int>& turned, double t, double dt, std::vector<char>& stepped) {
