@@ -77,17 +77,17 @@ nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options) {
   std::unique_ptr<ProgressBar> bar;
   if (options.progress) bar = std::make_unique<ProgressBar>(steps);
 
-  long eventLimitSteps = 0, islandsRedone = 0, done = 0;
+  long eventLimitSteps = 0, islandsJoined = 0, done = 0;
   const RunRecord record = recordRun(engine, steps, options.dtFor(scene), scene.up(), [&] {
     eventLimitSteps += engine.lastReport().eventLimitHit;
-    islandsRedone += engine.lastReport().islandsRedone;
+    islandsJoined += engine.lastReport().islandsJoined;
     if (log) log->write(engine.world(), engine.lastReport());
     if (bar) bar->update(++done);
     checkFinite(scene, engine.world());
   });
   nlohmann::ordered_json summary = summaryToJson(scene.name, record);
   summary["event_limit_steps"] = eventLimitSteps;
-  summary["islands_redone"] = islandsRedone;
+  summary["islands_joined"] = islandsJoined;
   summary["sleeping_bodies"] = engine.sleepingBodies();
   return summary;
 }

@@ -34,8 +34,8 @@ void checkRunLength(const Scene& scene, const RunOptions& options);
 /// Runs the scene and returns SPEC.md's summary: scene, steps, sim_time, wall_time_s,
 /// first_contact_time, max_penetration, energy {initial, final, max_increase}, bodies
 /// (dynamic ones: pose, velocities, at_rest); plus event_limit_steps, the steps that hit
-/// kMaxEventsPerStep, and islands_redone, the islands taken back and stepped again with
-/// another (StepReport::islandsRedone).
+/// kMaxEventsPerStep, and islands_joined, the times an event turned a body towards
+/// another island's and the two went on as one (StepReport::islandsJoined).
 nlohmann::ordered_json runScene(const Scene& scene, const RunOptions& options);
 
 }  // namespace polysim::sim

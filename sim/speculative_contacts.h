@@ -45,7 +45,8 @@ std::vector<collision::PairResult> speculativePairs(const collision::ObjectDatab
 /// (the pairs in contact within `tolerance` (m), body indices): every pair of `found` in
 /// contact that `speculate` accepts gets the contacts found so (those within the
 /// tolerance as before, plus the features that may touch within the step, each with its
-/// own gap). `touching` are all returned: with the widened contacts where found and
+/// own gap; a pair not in `touching` has none below `tolerance`, as the detector found it
+/// apart). `touching` are all returned: with the widened contacts where found and
 /// accepted (plus each of their own contacts whose normal no widened contact shares: the
 /// detector's verdict is the one a step keeps), else as they are.
 std::vector<collision::PairResult> mergeSpeculative(const std::vector<collision::PairResult>& found,

@@ -28,7 +28,7 @@ nlohmann::ordered_json stepToJson(const World& world, const StepReport& report, 
   line["t"] = forOutput(report.time);
   line["events"] = events;
   if (report.eventLimitHit) line["event_limit"] = true;
-  if (report.islandsRedone > 0) line["islands_redone"] = report.islandsRedone;
+  if (report.islandsJoined > 0) line["islands_joined"] = report.islandsJoined;
   nlohmann::ordered_json islandBodies = nlohmann::ordered_json::array(), islandEvents = nlohmann::ordered_json::array();
   for (const IslandReport& island : report.islands) {
     islandBodies.push_back(island.bodies);

@@ -17,7 +17,7 @@ World::World(const Scene& scene, collision::TocMethod method)
     : scene_(scene), db_(buildObjectDatabase(scene)), reach_(static_cast<int>(scene.bodies.size())) {
   checkInitialState(scene_);
   tocOptions_.method = method;
-  tocOptions_.gatherAtEvent = false;  // an event's contacts are those of the groups it reaches (stepIsland)
+  tocOptions_.gatherAtEvent = false;  // an event's contacts are those of the groups it reaches (takeEvent)
   workspace_.reuse.enable(scene_.contact.reuseContacts);
   workspace_.separations.enable();  // its meshes live as long as the world
   for (const BodySpec& spec : scene_.bodies) {
@@ -41,7 +41,7 @@ World::World(const Scene& scene, collision::TocMethod method)
   asleep_.assign(bodies_.size(), 0);
   eventsOf_.assign(bodies_.size(), 0);
   still_.assign(bodies_.size(), 0);
-  startOf_.resize(bodies_.size());
+  reachBoxes_.resize(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {
     paths_[i].body = &bodies_[i];
     db_.objects[i].info = &paths_[i];
@@ -132,86 +132,127 @@ void World::sleepIfSettled(const std::vector<int>& island, double dt) {
   }
 }
 
-void World::stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter) {
-  collision::ObjectDatabase& db = databaseFor(island);
-  std::vector<collision::PairResult> contacts;  // the island's, body indices
-  for (const collision::PairResult& p : contacts_)
-    if (std::binary_search(island.begin(), island.end(), bodies_[p.a].isStatic ? p.b : p.a)) contacts.push_back(p);
-  double remaining = dt;
-  ++islandSerial_;
-  for (int i : island) eventsOf_[i] = 0;
-  report_.islands.push_back({static_cast<int>(island.size()), 0});
-  for (int& events = report_.islands.back().events; remaining > 0;) {
-    predictMotion(island, remaining);                        // each body's path over the rest of the step
-    if (outgrewItsBounds(island)) return;                    // its bodies may reach another island's now
-    collision::TocResult toc = detectCollisions(db);         // back up to the island's first contact, if any
-    const double elapsed = toc.time * remaining;
-    commitPoses(island, elapsed);                            // its bodies move to that state
-    remaining -= elapsed;
-    if (toc.stoppedBy == collision::TocStop::NoInterpenetration) {  // every pair was gathered at the step's end
-      contacts = std::move(toc.pairs);
-      noteContacts(contacts, time_ + (dt - remaining));
-      break;
-    }
-    ++events;
-    const bool bodyAtBound = countEventOfBodies(toc.crossing);
-    const std::vector<std::pair<int, int>> crossing = toc.crossing;
-    // The event's contacts: those of the groups it reaches, tested at its time; the
-    // island's other pairs keep their last test (bodiesAnEventReaches). When the clock
-    // stops or nothing moved, every pair is tested: the step ends on those contacts, or a
-    // stall solves them all.
-    std::vector<char> tested(bodies_.size(), 0);
-    const std::vector<char> want = bodiesAnEventReaches(island, contacts, toc, bodyAtBound || elapsed == 0.0);
-    toc.pairs = retestPairsOf(db, want, tested, contacts);
-    noteContacts(toc.pairs, time_ + (dt - remaining));
-    report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
-    if (bodyAtBound) {                                       // the island's clock stops (see kMaxEventsPerStep)
-      report_.eventLimitHit = true;
-      if (remaining == dt) stopTouchingBodies(contacts);     // it did not move at all
-      else takeBackUnflownGravity(island, remaining);
-      break;
-    }
-    // No progress at all: the solver's contacts approach nowhere, yet the detector finds
-    // a pair interpenetrating at once (see kStalledGapFraction); push them apart.
-    const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
-                                                : -kStalledGapFraction * db_.tolerance;
-    // A stalled event is solved on the detector's own contacts, which it disagrees with.
-    // The speculative test, too, covers the pairs of the bodies tested at this event
-    // (after the island's first event; its others keep their last test).
-    std::vector<char> speculated(bodies_.size(), 0);
-    const auto newlyTested = [&] {
-      std::vector<char> only(bodies_.size(), 0);
-      for (size_t i = 0; i < only.size(); ++i) only[i] = tested[i] && !speculated[i], speculated[i] = tested[i];
-      return only;
-    };
-    std::vector<collision::PairResult> solved = contacts;
-    if (elapsed > 0.0) {
-      const std::vector<char> only = newlyTested();
-      solved = solverContacts(db, islandIds_, contacts, &only);
-    }
-    // Which pairs bounce is judged before the solve turns their approach into a rebound:
-    // judged after it, a bounced box was taken for landed and given the rest of the step's
-    // gravity at once (at dt 1 s, 9 m/s down, which it then bounced off: +12 J a step).
-    const BodyPairs bouncing = bouncingPairs(contacts);
-    // Only the groups of contacts the event disturbed are solved again (event_reach.h); a
-    // stalled event pushes all of its contacts apart.
-    const auto remakeSolverContacts = [&](const std::vector<collision::PairResult>& now) {
-      const std::vector<char> only = newlyTested();
-      return solverContacts(db, islandIds_, now, &only);
-    };
-    if (elapsed > 0.0) solved = reachedAtEvent(db, std::move(solved), crossing, tested, contacts, remakeSolverContacts);
-    resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
-    if (supportTouchingBodies(contacts, bouncing, remaining)) {  // bodies that landed take the rest of the step's gravity,
-      if (elapsed > 0.0) {                                       // and may now speculate (settled)
-        const auto remakeOnceLanded = [&](const std::vector<collision::PairResult>& now) {
-          return solverContactsOnceLanded(db, islandIds_, now);
-        };
-        solved = reachedAtEvent(db, remakeOnceLanded(contacts), crossing, tested, contacts, remakeOnceLanded);
-      }
-      resolveContacts(solved, remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
-    }
+void World::startIsland(IslandRun& run, std::vector<char>& stepped) {
+  for (int i : run.bodies) {
+    if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
+    stepped[i] = 1;
+    eventsOf_[i] = 0;
   }
-  contactsAfter.insert(contactsAfter.end(), contacts.begin(), contacts.end());
+  for (const collision::PairResult& p : contacts_)
+    if (std::binary_search(run.bodies.begin(), run.bodies.end(), bodies_[p.a].isStatic ? p.b : p.a)) run.contacts.push_back(p);
+  run.serial = ++islandsNumbered_;
+  run.reportEntry = static_cast<int>(report_.islands.size());
+  report_.islands.push_back({static_cast<int>(run.bodies.size()), 0});
+  run.state = IslandRun::State::Stepping;
+}
+
+void World::findNextEvent(IslandRun& run) {
+  collision::ObjectDatabase& db = databaseFor(run.bodies);
+  predictMotion(run.bodies, run.remaining);  // each body's path over the rest of the step
+  for (int i : run.bodies) {
+    const collision::ObjNode& node = db_.objects[i];
+    reachBoxes_[i] = collision::grow(collision::worldContainer(node), node.motionBound + db_.tolerance);
+  }
+  run.toc = detectCollisions(db);  // back up to the island's first contact, if any
+  run.elapsed = run.toc.time * run.remaining;
+}
+
+void World::finishIsland(IslandRun& run, double dt) {
+  commitPoses(run.bodies, run.elapsed);
+  run.remaining -= run.elapsed;
+  run.contacts = std::move(run.toc.pairs);  // every pair was gathered at the step's end
+  noteContacts(run.contacts, time_ + (dt - run.remaining));
+}
+
+std::vector<int> World::takeEvent(IslandRun& run, double dt) {
+  const std::vector<int>& island = run.bodies;
+  std::vector<collision::PairResult>& contacts = run.contacts;
+  collision::ObjectDatabase& db = databaseFor(island);  // as findNextEvent() left its poses
+  islandSerial_ = run.serial;
+  const double elapsed = run.elapsed;
+  commitPoses(island, elapsed);  // its bodies move to the event's state
+  run.remaining -= elapsed;
+  const double remaining = run.remaining;
+  struct Path {
+    Eigen::Vector3d v, w, pushV, pushW;
+    char free;
+  };
+  std::vector<Path> before;  // to tell which bodies the event turns aside
+  for (int i : island) {
+    const dynamics::RigidBody& b = bodies_[i];
+    before.push_back({b.velocity, b.angularVelocity, b.pushVelocity, b.pushAngularVelocity, free_[i]});
+  }
+  const auto turnedAside = [&] {
+    std::vector<int> turned;
+    for (size_t k = 0; k < island.size(); ++k) {
+      const dynamics::RigidBody& b = bodies_[island[k]];
+      const Path& p = before[k];
+      if (b.velocity != p.v || b.angularVelocity != p.w || b.pushVelocity != p.pushV || b.pushAngularVelocity != p.pushW ||
+          free_[island[k]] != p.free)
+        turned.push_back(island[k]);
+    }
+    return turned;
+  };
+  ++report_.islands[run.reportEntry].events;
+  collision::TocResult toc = std::move(run.toc);
+  const bool bodyAtBound = countEventOfBodies(toc.crossing);
+  const std::vector<std::pair<int, int>> crossing = toc.crossing;
+  // The event's contacts: those of the groups it reaches, tested at its time; the
+  // island's other pairs keep their last test (bodiesAnEventReaches). When the clock
+  // stops or nothing moved, every pair is tested: the step ends on those contacts, or a
+  // stall solves them all.
+  std::vector<char> tested(bodies_.size(), 0);
+  const std::vector<char> want = bodiesAnEventReaches(island, contacts, toc, bodyAtBound || elapsed == 0.0);
+  toc.pairs = retestPairsOf(db, want, tested, contacts);
+  noteContacts(toc.pairs, time_ + (dt - remaining));
+  report_.events.push_back({time_ + (dt - remaining), std::move(toc)});
+  if (bodyAtBound) {  // the island's clock stops (see kMaxEventsPerStep)
+    report_.eventLimitHit = true;
+    if (remaining == dt) stopTouchingBodies(contacts);  // it did not move at all
+    else takeBackUnflownGravity(island, remaining);
+    run.state = IslandRun::State::Stopped;
+    return turnedAside();
+  }
+  // No progress at all: the solver's contacts approach nowhere, yet the detector finds
+  // a pair interpenetrating at once (see kStalledGapFraction); push them apart.
+  const double allowedOverlap = elapsed > 0.0 ? dynamics::kAllowedOverlapFraction * db_.tolerance
+                                              : -kStalledGapFraction * db_.tolerance;
+  // A stalled event is solved on the detector's own contacts, which it disagrees with.
+  // The speculative test, too, covers the pairs of the bodies tested at this event
+  // (after the island's first event; its others keep their last test).
+  std::vector<char> speculated(bodies_.size(), 0);
+  const auto newlyTested = [&] {
+    std::vector<char> only(bodies_.size(), 0);
+    for (size_t i = 0; i < only.size(); ++i) only[i] = tested[i] && !speculated[i], speculated[i] = tested[i];
+    return only;
+  };
+  std::vector<collision::PairResult> solved = contacts;
+  if (elapsed > 0.0) {
+    const std::vector<char> only = newlyTested();
+    solved = solverContacts(db, islandIds_, contacts, &only);
+  }
+  // Which pairs bounce is judged before the solve turns their approach into a rebound:
+  // judged after it, a bounced box was taken for landed and given the rest of the step's
+  // gravity at once (at dt 1 s, 9 m/s down, which it then bounced off: +12 J a step).
+  const BodyPairs bouncing = bouncingPairs(contacts);
+  // Only the groups of contacts the event disturbed are solved again (event_reach.h); a
+  // stalled event pushes all of its contacts apart.
+  const auto remakeSolverContacts = [&](const std::vector<collision::PairResult>& now) {
+    const std::vector<char> only = newlyTested();
+    return solverContacts(db, islandIds_, now, &only);
+  };
+  if (elapsed > 0.0) solved = reachedAtEvent(db, std::move(solved), crossing, tested, contacts, remakeSolverContacts);
+  resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
+  if (supportTouchingBodies(contacts, bouncing, remaining)) {  // bodies that landed take the rest of the step's gravity,
+    if (elapsed > 0.0) {                                       // and may now speculate (settled)
+      const auto remakeOnceLanded = [&](const std::vector<collision::PairResult>& now) {
+        return solverContactsOnceLanded(db, islandIds_, now);
+      };
+      solved = reachedAtEvent(db, remakeOnceLanded(contacts), crossing, tested, contacts, remakeOnceLanded);
+    }
+    resolveContacts(solved, remaining, false, allowedOverlap, &bouncing);  // after their impact, bouncing no more
+  }
+  return turnedAside();
 }
 
 collision::ObjectDatabase& World::databaseFor(const std::vector<int>& island) {

@@ -13,6 +13,7 @@
 #include "collision/time_of_contact.h"
 #include "dynamics/rigid_body.h"
 #include "sim/body_path.h"
+#include "sim/islands.h"
 #include "sim/contact_points.h"
 #include "sim/event_reach.h"
 #include "sim/scene.h"
@@ -56,9 +57,9 @@ inline constexpr double kStalledGapFraction = 0.5;
 /// test, which their contacts' gaps follow, and speculate further anyway.
 inline constexpr double kWideBandFactor = 2.0;
 
-/// Round-off allowed (m) when a body's reach over the rest of a step is checked against
-/// the swept bounds its island was found by (World::outgrewItsBounds): the two are the
-/// same sum taken in another order when nothing sped the body up.
+/// Round-off allowed (m) when two bodies' paths are judged apart (islands.h,
+/// pathsMayMeet): a body's path carried along to an event's time is the same sum as its
+/// committed pose, taken in another order.
 inline constexpr double kBoundsRoundOff = 1e-9;
 
 /// Pairs of body indices, the smaller first.
@@ -84,10 +85,9 @@ struct StepReport {
   std::vector<StepEvent> events;
   std::vector<IslandReport> islands;  // in the order they stepped
   bool eventLimitHit = false;
-  /// Times an island's body outgrew the swept bounds its island was found by into another
-  /// island's (an event's impulses sped it up), so that the two islands were taken back
-  /// to the step's start and stepped again as one.
-  int islandsRedone = 0;
+  /// Times an event turned a body towards another island's, so that the two islands went
+  /// on as one from that event (World::joinIslandsReached).
+  int islandsJoined = 0;
   double penetration = 0.0;  // m, deepest overlap among the committed states
   int solverIterations = 0;  // the contact solver's sweeps, summed over the step's solves
   int shockSweeps = 0;       // and shock propagation's (dynamics/shock_propagation.h)
@@ -164,7 +164,7 @@ class World {
   /// that is not convex found in the wide band (kWideBandFactor).
   /// `only`, when given (per body) after an earlier event of the same island: the
   /// speculative test covers only the pairs with a body it marks, the others keep their
-  /// last one (the bodies an event reaches; see stepIsland()).
+  /// last one (the bodies an event reaches; see takeEvent()).
   std::vector<collision::PairResult> solverContacts(const collision::ObjectDatabase& db, const std::vector<int>& bodyOf,
                                                     const std::vector<collision::PairResult>& touching,
                                                     const std::vector<char>* only = nullptr);
@@ -195,31 +195,53 @@ class World {
                        double allowedOverlap, const BodyPairs* bouncing = nullptr);
   /// The pairs of `contacts` that bounce (bounces()), as body pairs.
   BodyPairs bouncingPairs(const std::vector<collision::PairResult>& contacts) const;
-  /// The islands of this step (islands.h): bodies linked by contacts or by swept bounds
-  /// that overlap over `duration`; keeps each body's bounds in stepBounds_.
+  /// The islands of this step (islands.h): bodies linked by contacts or by paths that may
+  /// meet over `duration`; keeps each body's path as judged in sweptBodies_.
   std::vector<std::vector<int>> islandsOfStep(double duration);
-  /// Steps each island that is not all asleep (waking the sleeping bodies of the others)
-  /// and marks its bodies in `stepped`. When a body outgrows its island's bounds into
-  /// another island's (outgrewItsBounds), both islands are taken back to the step's start
-  /// (takeBack) and step again as one; the others keep what they did.
-  void stepIslands(std::vector<std::vector<int>> islands, double dt, std::vector<collision::PairResult>& contactsAfter,
+  /// Steps the islands through their contact events in the order of the events' times,
+  /// whichever island each falls in; an island that is all asleep waits (its sleeping
+  /// bodies are woken where another island's steps). When an event turns a body aside
+  /// towards another island's, the two go on as one (joinIslandsReached). Marks each
+  /// stepped body in `stepped` and appends the islands' contacts at the step's end to
+  /// `contactsAfter`, island after island.
+  void stepIslands(const std::vector<std::vector<int>>& islands, double dt, std::vector<collision::PairResult>& contactsAfter,
                    std::vector<char>& stepped);
-  /// True (and outgrown_ set) when, with several islands, a body of `island` may now move
-  /// beyond the swept bounds its island was found by (stepBounds_) into those of a body of
-  /// another island: an event's impulses sped it up, and over the rest of the step it may
-  /// meet that body, which its island's database does not hold (a refilled pen: a box
-  /// kicked into a resting one of another island, found interpenetrating at the next
-  /// step's start).
-  bool outgrewItsBounds(const std::vector<int>& island);
-  /// Steps one island through its contact events over `dt`; appends its contacts at the
-  /// end of the step to `contactsAfter`.
-  void stepIsland(const std::vector<int>& island, double dt, std::vector<collision::PairResult>& contactsAfter);
-  /// Undoes an island's share of the step: its bodies back to their states before it
-  /// stepped (startOf_), its contacts, events, sleeps and wakes out of `contactsAfter` and
-  /// report_, and its entry `reportEntry` of report_.islands marked to be dropped. The
-  /// report's deepest overlap, sweep counts and event limit keep what the undone share
-  /// did (work done, and a bound that held for states then committed).
-  void takeBack(const std::vector<int>& island, int reportEntry, std::vector<collision::PairResult>& contactsAfter);
+  /// One island's progress through a step (stepIslands).
+  struct IslandRun {
+    std::vector<int> bodies;  // increasing
+    double remaining = 0.0;   // s of the step its clock has still to go
+    collision::TocResult toc;  // its next contact event (or the step's end), over `remaining`
+    double elapsed = 0.0;      // s from its clock to that event: toc.time * remaining
+    std::vector<collision::PairResult> contacts;  // as last tested, body indices
+    int reportEntry = -1;  // its entry in report_.islands
+    long serial = 0;       // islandSerial_ while it is its island (speculativeContacts)
+    std::vector<collision::PairResult> speculativeFound;  // its last speculative test (speculativeFound_)
+    long speculativeSerial = -1;                           // and the serial it was made for
+    enum class State { Asleep, Stepping, Stopped, Joined } state = State::Asleep;
+  };
+  /// The island wakes and starts the step: its contacts, its report entry, its bodies'
+  /// event counts and their marks in `stepped`.
+  void startIsland(IslandRun& run, std::vector<char>& stepped);
+  /// Finds the island's next contact event over the rest of its step (run.toc, run.elapsed).
+  void findNextEvent(IslandRun& run);
+  /// Moves the island's clock to its next event and takes it: the contacts the event
+  /// reaches tested again and solved, bodies that landed supported (the body of the old
+  /// single-island loop). Returns the island's bodies whose path the event changed.
+  std::vector<int> takeEvent(IslandRun& run, double dt);
+  /// Moves the island's clock to the step's end, where it found no event, and keeps its
+  /// contacts there.
+  void finishIsland(IslandRun& run, double dt);
+  /// Body `i`'s path over the next `duration` s from its box `start` (islands.h): its
+  /// velocity, gravity and turn as predictMotion() moves it; `swept` is left as `start`.
+  SweptBody pathFrom(int i, const Eigen::AlignedBox3d& start, double duration) const;
+  /// Where body `i` is along its path at `t` s into the step of `dt`, and its path from
+  /// there (islands.h), whatever island holds it and wherever that island's clock stands.
+  SweptBody pathAt(int i, double t, double dt) const;
+  /// After an event of island `k` at `t` s into the step of `dt`: each body of
+  /// `turned` (its path changed) that may now meet a body of another island brings that
+  /// island into island k, its clock moved to t. A refilled pen: a box kicked into a
+  /// resting one of another island, found interpenetrating at the next step's start.
+  void joinIslandsReached(int k, const std::vector<int>& turned, double t, double dt, std::vector<char>& stepped);
   /// The database collisionDetect() is given for an island: the world's own when the
   /// island holds every dynamic body, else islandDb_ filled with the island's bodies and
   /// every static one (islandIds_ maps its objects to body indices).
@@ -263,14 +285,6 @@ class World {
   /// The body moves this step: dynamic and not asleep.
   bool awake(int body) const { return !bodies_[body].isStatic && !asleep_[body]; }
 
-  /// What an island's step changes in a body, kept from before it (stepIslands).
-  struct BodyStart {
-    dynamics::RigidBody body;
-    collision::ObjNode object;
-    char free = 0, asleep = 0;
-    double slowFor = 0.0;
-  };
-
   Scene scene_;
   collision::TocOptions tocOptions_;
   collision::ObjectDatabase db_;
@@ -292,13 +306,15 @@ class World {
   /// solverContactsOnceLanded(): valid only for the poses it tested.
   std::vector<collision::PairResult> speculativeFound_;
   std::vector<char> speculatedFree_;
-  long islandSerial_ = 0;        // counts stepIsland() calls
+  long islandSerial_ = 0;        // the serial of the island taking an event (IslandRun::serial)
+  long islandsNumbered_ = 0;     // serials given out this run: each island started or joined gets the next
   long speculativeIsland_ = -1;  // the call whose whole island speculativeFound_ was last tested for
-  std::vector<Eigen::AlignedBox3d> stepBounds_;  // per body: its swept bounds this step (islandsOfStep)
-  bool watchBounds_ = false;  // several islands step: each body must stay within its stepBounds_
-  bool outgrown_ = false;     // one did not (outgrewItsBounds)
-  std::pair<int, int> outgrownLink_;  // that body, and one of another island's it can now reach
-  std::vector<BodyStart> startOf_;    // per body: its state before its island stepped this step
+  std::vector<SweptBody> sweptBodies_;  // per body: its path over the step, as islandsOfStep() judged it
+  std::vector<IslandRun> runs_;         // this step's islands (stepIslands)
+  std::vector<int> runOf_;              // per body: its island in runs_, -1 for a static one
+  /// Per body: a box holding it from its island's clock to the step's end, grown by the
+  /// tolerance (findNextEvent); where another island's body may meet it.
+  std::vector<Eigen::AlignedBox3d> reachBoxes_;
   /// The step-start solve's impulses as forces (N): impulse / dt, and those of sleeping
   /// pairs from the step they fell asleep. Only the step-start solve is kept:
   /// an event's solve is mostly a collision impulse over what remains of the step, and

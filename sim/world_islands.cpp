@@ -1,130 +1,141 @@
-// World's islands (world.h, islands.h): which bodies step together, and what happens
-// when an event's impulses carry a body out of the swept bounds its island was found by.
+// World's islands (world.h, islands.h): which bodies step together, the order their
+// events are taken in, and what happens when an event turns a body towards another
+// island's.
 
 #include "sim/world.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "collision/aabb.h"
 #include "sim/islands.h"
 
 namespace polysim::sim {
 
-namespace {
-
-bool holds(const std::vector<int>& island, int body) { return std::binary_search(island.begin(), island.end(), body); }
-
-/// The dynamic body of an event's first crossing pair (or first pair), -1 when it names none.
-int bodyOfEvent(const StepEvent& event, const std::vector<dynamics::RigidBody>& bodies) {
-  if (!event.toc.crossing.empty()) {
-    const auto [a, b] = event.toc.crossing.front();
-    return bodies[a].isStatic ? b : a;
-  }
-  if (!event.toc.pairs.empty()) {
-    const collision::PairResult& p = event.toc.pairs.front();
-    return bodies[p.a].isStatic ? p.b : p.a;
-  }
-  return -1;
+SweptBody World::pathFrom(int i, const Eigen::AlignedBox3d& start, double duration) const {
+  const dynamics::RigidBody& b = bodies_[i];
+  SweptBody path;
+  path.start = path.swept = start;
+  path.dynamic = !b.isStatic;
+  if (b.isStatic) return path;
+  path.velocity = b.velocity + b.pushVelocity;  // as predictMotion() gives it (body_path.h)
+  path.gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
+  path.turn = (b.angularVelocity + b.pushAngularVelocity).norm() * sizes_[i] * duration;
+  return path;
 }
 
-}  // namespace
-
 std::vector<std::vector<int>> World::islandsOfStep(double duration) {
-  std::vector<Eigen::AlignedBox3d>& bounds = stepBounds_;
-  bounds.assign(bodies_.size(), Eigen::AlignedBox3d());
-  std::vector<char> dynamic(bodies_.size());
+  sweptBodies_.assign(bodies_.size(), SweptBody());
   for (size_t i = 0; i < bodies_.size(); ++i) {
-    const dynamics::RigidBody& b = bodies_[i];
-    dynamic[i] = !b.isStatic;
-    if (b.isStatic) continue;
-    const Eigen::Vector3d gravity = free_[i] ? scene_.gravity : Eigen::Vector3d::Zero();
-    // Grown by the tolerance too: bodies that end the step within it of each other (in
+    // Grown by the tolerance: bodies that end the step within it of each other (in
     // contact) share an island, so a sleeping body never touches one that is awake.
-    bounds[i] = collision::grow(collision::worldContainer(db_.objects[i]),
-                                pathMotionBound(b, sizes_[i], duration, gravity) + db_.tolerance);
+    SweptBody& s = sweptBodies_[i] = pathFrom(static_cast<int>(i),
+        collision::grow(collision::worldContainer(db_.objects[i]), db_.tolerance), duration);
+    if (s.dynamic) s.swept = collision::grow(s.start, pathMotionBound(bodies_[i], sizes_[i], duration, s.gravity));
   }
   std::vector<std::pair<int, int>> touching;
   for (const collision::PairResult& p : contacts_) touching.emplace_back(p.a, p.b);
-  return findIslands(bounds, dynamic, touching);
+  for (size_t i = 0; i < bodies_.size(); ++i) reachBoxes_[i] = sweptBodies_[i].swept;
+  return findIslands(sweptBodies_, duration, touching, kBoundsRoundOff);
 }
 
-void World::stepIslands(std::vector<std::vector<int>> islands, double dt, std::vector<collision::PairResult>& contactsAfter,
-                        std::vector<char>& stepped) {
-  watchBounds_ = islands.size() > 1;
-  std::vector<int> islandOf(bodies_.size(), -1);
-  for (size_t k = 0; k < islands.size(); ++k)
-    for (int i : islands[k]) islandOf[i] = static_cast<int>(k);
-  std::vector<int> reportEntry(islands.size(), -1);  // its place in report_.islands once stepped
-  std::vector<char> merged(islands.size(), 0);       // taken into a later island
+void World::stepIslands(const std::vector<std::vector<int>>& islands, double dt,
+                        std::vector<collision::PairResult>& contactsAfter, std::vector<char>& stepped) {
+  runs_.assign(islands.size(), IslandRun());
+  runOf_.assign(bodies_.size(), -1);
   for (size_t k = 0; k < islands.size(); ++k) {
-    if (merged[k]) continue;
-    const std::vector<int> island = islands[k];  // a copy: islands grows below
-    if (std::all_of(island.begin(), island.end(), [this](int i) { return asleep_[i] != 0; })) continue;
-    for (int i : island) {
-      startOf_[i] = {bodies_[i], db_.objects[i], free_[i], asleep_[i], slowFor_[i]};
-      if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
-      stepped[i] = 1;
+    IslandRun& run = runs_[k];
+    run.bodies = islands[k];
+    run.remaining = dt;
+    for (int i : run.bodies) runOf_[i] = static_cast<int>(k);
+    if (std::all_of(run.bodies.begin(), run.bodies.end(), [this](int i) { return asleep_[i] != 0; })) continue;
+    startIsland(run, stepped);
+    findNextEvent(run);
+  }
+  // The events in the order of their times: an island waits at its next event (or at the
+  // step's end) while another's comes first, so that an event that turns a body towards
+  // it finds its clock behind the event's, never past it.
+  for (;;) {
+    int next = -1;
+    double nextAt = 0.0;
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      const IslandRun& run = runs_[k];
+      if (run.state != IslandRun::State::Stepping || run.toc.stoppedBy == collision::TocStop::NoInterpenetration) continue;
+      const double at = (dt - run.remaining) + run.elapsed;
+      if (next < 0 || at < nextAt) next = static_cast<int>(k), nextAt = at;
     }
-    reportEntry[k] = static_cast<int>(report_.islands.size());
-    outgrown_ = false;
-    stepIsland(island, dt, contactsAfter);
-    if (!outgrown_) {
-      sleepIfSettled(island, dt);
-      continue;
-    }
-    // Its body may now reach island `other`'s: both start the step again as one island,
-    // the others keep what they did.
-    const int other = islandOf[outgrownLink_.second];
-    takeBack(island, reportEntry[k], contactsAfter);
-    if (reportEntry[other] >= 0) takeBack(islands[other], reportEntry[other], contactsAfter);
-    std::vector<int> both;
-    std::merge(island.begin(), island.end(), islands[other].begin(), islands[other].end(), std::back_inserter(both));
-    merged[k] = merged[other] = 1;
-    for (int i : both) islandOf[i] = static_cast<int>(islands.size());
-    islands.push_back(std::move(both));
-    reportEntry.push_back(-1);
-    merged.push_back(0);
-    ++report_.islandsRedone;
+    if (next < 0) break;
+    IslandRun& taking = runs_[next];
+    std::swap(speculativeFound_, taking.speculativeFound);  // its own last test, whatever islands took events since
+    speculativeIsland_ = taking.speculativeSerial;
+    const std::vector<int> turned = takeEvent(taking, dt);
+    std::swap(speculativeFound_, taking.speculativeFound);
+    taking.speculativeSerial = speculativeIsland_;
+    if (runs_.size() > 1) joinIslandsReached(next, turned, dt - runs_[next].remaining, dt, stepped);
+    if (runs_[next].state == IslandRun::State::Stepping) findNextEvent(runs_[next]);
+  }
+  for (IslandRun& run : runs_) {
+    if (run.state == IslandRun::State::Asleep || run.state == IslandRun::State::Joined) continue;
+    if (run.state == IslandRun::State::Stepping) finishIsland(run, dt);
+    contactsAfter.insert(contactsAfter.end(), run.contacts.begin(), run.contacts.end());
+    sleepIfSettled(run.bodies, dt);
   }
   report_.islands.erase(std::remove_if(report_.islands.begin(), report_.islands.end(),
                                        [](const IslandReport& r) { return r.bodies == 0; }),
                         report_.islands.end());
 }
 
-bool World::outgrewItsBounds(const std::vector<int>& island) {
-  if (!watchBounds_) return false;
-  for (int i : island) {
-    const collision::ObjNode& node = db_.objects[i];
-    const Eigen::AlignedBox3d reach = collision::grow(collision::worldContainer(node), node.motionBound + db_.tolerance);
-    if (collision::grow(stepBounds_[i], kBoundsRoundOff).contains(reach)) continue;
-    // Bounds first: they lie side by side, while each body is a long read (a landing pile
-    // of 1000 spent 5% of its run in this loop when bodies came first).
-    for (size_t j = 0; j < bodies_.size(); ++j)
-      if (stepBounds_[j].intersects(reach) && !bodies_[j].isStatic && !holds(island, static_cast<int>(j))) {
-        outgrownLink_ = {i, static_cast<int>(j)};
-        return outgrown_ = true;
-      }
+SweptBody World::pathAt(int i, double t, double dt) const {
+  const IslandRun& run = runs_[runOf_[i]];
+  if (run.state == IslandRun::State::Asleep) return alongPath(sweptBodies_[i], t, dt);  // at rest all step
+  const Eigen::AlignedBox3d here =
+      collision::grow(collision::transformBox(bodies_[i].pose(), db_.objects[i].grid->container()), db_.tolerance);
+  if (run.state == IslandRun::State::Stopped) {  // its clock stopped: it moves no more this step
+    SweptBody still;
+    still.start = still.swept = here;
+    still.dynamic = true;
+    return still;
   }
-  return false;
+  // Its island's clock stands at or before t; its path from there is the one
+  // findNextEvent() gave it (predictMotion).
+  return alongPath(pathFrom(i, here, run.remaining), t - (dt - run.remaining), run.remaining);
 }
 
-void World::takeBack(const std::vector<int>& island, int reportEntry, std::vector<collision::PairResult>& contactsAfter) {
-  for (int i : island) {
-    const BodyStart& start = startOf_[i];
-    bodies_[i] = start.body, db_.objects[i] = start.object;
-    free_[i] = start.free, asleep_[i] = start.asleep, slowFor_[i] = start.slowFor;
+void World::joinIslandsReached(int k, const std::vector<int>& turned, double t, double dt, std::vector<char>& stepped) {
+  const double remaining = dt - t;
+  for (int i : turned) {
+    if (bodies_[i].isStatic) continue;
+    const SweptBody now = pathAt(i, t, dt);
+    const double bound = pathMotionBound(bodies_[i], sizes_[i], remaining, now.gravity);
+    const Eigen::AlignedBox3d reach = collision::grow(now.start, bound);
+    // Boxes first: they lie side by side, while each body is a long read.
+    for (size_t j = 0; j < bodies_.size(); ++j) {
+      if (!reachBoxes_[j].intersects(reach) || runOf_[j] == k || bodies_[j].isStatic) continue;
+      if (!pathsMayMeet(now, pathAt(static_cast<int>(j), t, dt), remaining, kBoundsRoundOff)) continue;
+      IslandRun& other = runs_[runOf_[j]];
+      IslandRun& run = runs_[k];
+      if (other.state == IslandRun::State::Asleep) {
+        startIsland(other, stepped);  // at rest: its clock moves to t for nothing
+      } else if (other.state == IslandRun::State::Stepping) {
+        commitPoses(other.bodies, other.remaining - remaining);  // along the paths it was given
+        for (int m : other.bodies) db_.objects[m].X_WO = bodies_[m].pose();
+      }
+      for (int m : other.bodies) runOf_[m] = k;
+      std::vector<int> both;
+      std::merge(run.bodies.begin(), run.bodies.end(), other.bodies.begin(), other.bodies.end(), std::back_inserter(both));
+      run.bodies = std::move(both);
+      run.contacts.insert(run.contacts.end(), other.contacts.begin(), other.contacts.end());
+      IslandReport& entry = report_.islands[run.reportEntry];
+      IslandReport& joined = report_.islands[other.reportEntry];
+      entry.bodies += joined.bodies, entry.events += joined.events;
+      joined = IslandReport{};  // dropped once the step's islands are done
+      other.state = IslandRun::State::Joined;
+      other.bodies.clear(), other.contacts.clear();
+      run.serial = ++islandsNumbered_;  // its speculative contacts were another island's
+      if (run.state == IslandRun::State::Stopped) run.state = IslandRun::State::Stepping;
+      ++report_.islandsJoined;
+    }
   }
-  const auto ofIsland = [this, &island](int a, int b) { return holds(island, bodies_[a].isStatic ? b : a); };
-  contactsAfter.erase(std::remove_if(contactsAfter.begin(), contactsAfter.end(),
-                                     [&ofIsland](const collision::PairResult& p) { return ofIsland(p.a, p.b); }),
-                      contactsAfter.end());
-  std::vector<StepEvent>& events = report_.events;
-  events.erase(std::remove_if(events.begin(), events.end(),
-                              [this, &island](const StepEvent& e) { return holds(island, bodyOfEvent(e, bodies_)); }),
-               events.end());
-  for (std::vector<int>* named : {&report_.fellAsleep, &report_.woke})
-    named->erase(std::remove_if(named->begin(), named->end(), [&island](int i) { return holds(island, i); }), named->end());
-  report_.islands[reportEntry].bodies = 0;  // dropped once the step's islands are done
 }
 
 }  // namespace polysim::sim

@@ -63,6 +63,41 @@ TEST(SpeculativeContacts, StillAndLeftObjectsAndRefusedPairsAreNotWidened) {
   EXPECT_EQ(withSpeculativeContacts(db, ws, kSpeculativeReach, {}, {}, oneMoving, everyPair).size(), 1u);
 }
 
+// Two top boxes of neighbouring tilted towers (pile of 1000, seed 15, poses at 11.63 s),
+// 6 mm apart at their nearest, in seeded frames: the widened test reads the lower box's
+// top corner, 1.5 cm beside the higher box's bottom face and just above its plane, as
+// 30 um deep along that face's normal. The detector finds the pair apart (not touching),
+// so the solver is given no gap below the tolerance: given the overlap, it held the
+// higher box tilted on that corner and the tower rocked for good.
+TEST(SpeculativeContacts, APairNotTouchingIsGivenNoGapBelowTheTolerance) {
+  const Eigen::Isometry3d lower = Eigen::Translation3d(-2.3035844, 0.5704868, 8.5012177) *
+                                  Eigen::Quaterniond(0.979258, 0.001008, -0.001782, -0.202609).normalized();
+  const Eigen::Isometry3d higher = Eigen::Translation3d(-2.5097177, -0.6221664, 9.5002545) *
+                                   Eigen::Quaterniond(0.999751, 0.000065, -0.001113, 0.022276).normalized();
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int k = 0; k < 8; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const Eigen::Isometry3d frame = k == 0 ? Eigen::Isometry3d::Identity()
+                                           : Eigen::Translation3d(5 * unit(rng), 5 * unit(rng), 5 * unit(rng)) *
+                                                 Eigen::AngleAxisd(M_PI * unit(rng), V3(unit(rng), unit(rng), 1).normalized());
+    collision::ObjectDatabase db;
+    const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(V3(1, 1, 1)));
+    db.add("lower", box, frame * lower, false);
+    db.add("higher", box, frame * higher, false);
+    collision::IntersectionWorkspace ws;
+    ASSERT_EQ(collision::test4Intersection(db, ws).status, Status::Separate);
+    const std::vector<PairResult> found = withSpeculativeContacts(db, ws, kSpeculativeReach, {}, {}, allMoving, everyPair);
+    ASSERT_EQ(found.size(), 1u);
+    int points = 0;
+    for (const collision::Contact& c : found[0].contacts) {
+      EXPECT_GE(c.separation, db.tolerance);
+      for (size_t i = 0; i < c.points.size(); ++i, ++points) EXPECT_GE(c.gapAt(i), db.tolerance);
+    }
+    EXPECT_GT(points, 0);
+  }
+}
+
 // A touching pair the test widens is replaced (once, under body indices); one it does
 // not find stays as it was given.
 TEST(SpeculativeContacts, TouchingPairsAreKeptOrWidenedAndMappedToBodies) {

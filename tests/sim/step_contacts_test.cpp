@@ -36,12 +36,12 @@ Pairs reportedPairs(const World& w) {
 // After every step for `seconds`: each pair a fresh test finds within half the tolerance
 // is reported, and each pair reported is within twice the tolerance. The slack keeps the
 // check off the tolerance's edge, where a carried-over contact may stand a hair beyond it.
-// Returns the islands redone over the run (StepReport::islandsRedone).
+// Returns the islands joined over the run (StepReport::islandsJoined).
 int expectContactsOfTheWholeDatabase(World& w, double seconds) {
   const double tolerance = w.scene().contact.tolerance;
   int checked = 0, redone = 0;
   test::runFor(w, seconds, [&](const StepReport& r) {
-    redone += r.islandsRedone;
+    redone += r.islandsJoined;
     const Pairs reported = reportedPairs(w);
     checked += static_cast<int>(reported.size());
     if (testing::Test::HasFailure()) return;  // one step's report is enough

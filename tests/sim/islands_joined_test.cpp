@@ -1,7 +1,7 @@
-// Islands redone (World::stepIslands, outgrewItsBounds, takeBack): an event's impulse can
-// send a body beyond the swept bounds its island was found by, into another island's. The
-// two islands are taken back to the step's start and step again as one, so the pair meets
-// at its own event.
+// Islands joined (World::stepIslands, joinIslandsReached): an event's impulse can turn a
+// body towards another island's. The islands take their events in time order, so the
+// other island's clock stands at or before the event; it is moved to the event and the
+// two go on as one, so the pair meets at its own event.
 
 #include <gtest/gtest.h>
 
@@ -50,7 +50,7 @@ std::string cradleScene(const Cradle& s) {
   const std::string a = box("A", 0.0, s.speed), b = box("B", xB, 0.0), c = box("C", xC, s.drift);
   const std::string d = R"({"name": "D", "mass": 1, "shape": {"type": "box", "size": [1, 1, 1]}, "position": [)" +
                         std::to_string(xC) + ", " + std::to_string(1.0 + 0.5 * kEps) + ", 0]}";
-  const std::string path = ::polysim::test::tempPath("islands_redone_cradle.json");
+  const std::string path = ::polysim::test::tempPath("islands_joined_cradle.json");
   std::ofstream(path) << std::setprecision(17) << R"({"dt": )" << s.dt << R"(, "duration": 1, "gravity": [0, 0, 0],)"
                       << R"( "contact": {"tolerance": )" << kEps << R"(, "restitution": 1, "friction": 0},)"
                       << R"( "sleep": {"enabled": false}, "bodies": [)"
@@ -70,7 +70,7 @@ void expectCradleStep(const Cradle& s) {
   const double xB = 1.0 + s.gapAB, xC = xB + 1.0 + s.gapBC;
   const double strikesB = s.gapAB / s.speed, strikesC = (s.gapAB + s.gapBC) / (s.speed - s.drift);
   const StepReport& r = w.step(s.dt);
-  EXPECT_EQ(r.islandsRedone, 1);
+  EXPECT_EQ(r.islandsJoined, 1);
   EXPECT_EQ(r.events.size(), 2u);
   ASSERT_EQ(r.islands.size(), 1u);  // the two islands ended as one
   EXPECT_EQ(r.islands.front().bodies, 4);
@@ -97,7 +97,7 @@ void expectCradleStep(const Cradle& s) {
   expectAt(2 * s.dt, bEnd + s.drift * s.dt, cEnd + s.speed * s.dt);
 }
 
-TEST(IslandsRedone, AStruckBodyMeetsABodyOfAnotherIslandAtItsOwnEvent) {
+TEST(IslandsJoined, AStruckBodyMeetsABodyOfAnotherIslandAtItsOwnEvent) {
   for (bool cFirst : {false, true}) {
     SCOPED_TRACE(cFirst ? "C's island steps first" : "C's island steps last");
     expectCradleStep({10.0, 0.0, 0.1, 0.5, 0.1, cFirst});
@@ -108,7 +108,7 @@ TEST(IslandsRedone, AStruckBodyMeetsABodyOfAnotherIslandAtItsOwnEvent) {
 // Seeded speeds, drifts, gaps and steps: C is always out of A's and B's reach at the
 // step's start (swept bounds grow by a body's motion every way, so B and C are further
 // apart than C drifts in a step) and always struck within it.
-TEST(IslandsRedone, SeededCradles) {
+TEST(IslandsJoined, SeededCradles) {
   constexpr double margin = 0.01;  // m, between bounds that must not overlap
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -171,7 +171,7 @@ std::string rowScene(const Row& row, double dt) {
     text << (k ? ", " : "") << R"({"name": "box)" << k << R"(", "mass": 1, "shape": {"type": "box", "size": [1, 1, 1]},)"
          << R"( "position": [)" << row.x[k] << R"(, 0, 0], "velocity": [)" << row.v[k] << ", 0, 0]}";
   text << "]}\n";
-  const std::string path = ::polysim::test::tempPath("islands_redone_row.json");
+  const std::string path = ::polysim::test::tempPath("islands_joined_row.json");
   std::ofstream(path) << text.str();
   return path;
 }
@@ -186,7 +186,7 @@ void expectRowMovesAsFreePoints(const Row& row, double dt, int steps, int& redon
   for (double v : row.v) energy += 0.5 * v * v;
   for (int step = 1; step <= steps; ++step) {
     const StepReport& r = w.step(dt);
-    redone += r.islandsRedone;
+    redone += r.islandsJoined;
     const double t = step * dt;
     std::vector<std::pair<double, double>> points;  // free points at t: position, speed
     for (int k = 0; k < boxes; ++k) points.emplace_back(row.x[k] - k + row.v[k] * t, row.v[k]);
@@ -202,7 +202,7 @@ void expectRowMovesAsFreePoints(const Row& row, double dt, int steps, int& redon
   }
 }
 
-TEST(IslandsRedone, SeededElasticRowsMoveAsFreePointsPassingThrough) {
+TEST(IslandsJoined, SeededElasticRowsMoveAsFreePointsPassingThrough) {
   std::mt19937_64 rng(11);
   int redone = 0;
   for (int seed = 0; seed < 24; ++seed) {
@@ -213,9 +213,10 @@ TEST(IslandsRedone, SeededElasticRowsMoveAsFreePointsPassingThrough) {
 }
 
 // A strikes B at 0.03 s, and B can then reach C, of the other island; but C is struck by
-// E at 0.0018 s and in fact strikes B at 0.02 s, before A does. Taken back and stepped as
-// one island, the row meets each of these at its own time.
-TEST(IslandsRedone, AnIslandReachingIntoOneWhoseOwnEventComesFirst) {
+// E at 0.0018 s and in fact strikes B at 0.02 s, before A does. Joined as one island
+// from the first event that turns a body towards the other, the row meets each of these
+// at its own time.
+TEST(IslandsJoined, AnIslandReachingIntoOneWhoseOwnEventComesFirst) {
   int redone = 0;
   expectRowMovesAsFreePoints({{0.0, 1.3, 2.5, 3.52}, {10.0, 0.0, 0.0, -11.0}}, 0.1, 3, redone);
   EXPECT_GE(redone, 1);
