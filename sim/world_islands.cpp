@@ -12,6 +12,38 @@
 
 namespace polysim::sim {
 
+void World::startIsland(IslandRun& run, std::vector<char>& stepped) {
+  for (int i : run.bodies) {
+    if (asleep_[i]) wake(i);  // within reach of a moving body: it rests through this step, then moves
+    stepped[i] = 1;
+    eventsOf_[i] = 0;
+  }
+  for (const collision::PairResult& p : contacts_)
+    if (std::binary_search(run.bodies.begin(), run.bodies.end(), bodies_[p.a].isStatic ? p.b : p.a)) run.contacts.push_back(p);
+  run.serial = ++islandsNumbered_;
+  run.reportEntry = static_cast<int>(report_.islands.size());
+  report_.islands.push_back({static_cast<int>(run.bodies.size()), 0});
+  run.state = IslandRun::State::Stepping;
+}
+
+void World::findNextEvent(IslandRun& run) {
+  collision::ObjectDatabase& db = databaseFor(run.bodies);
+  predictMotion(run.bodies, run.remaining);  // each body's path over the rest of the step
+  for (int i : run.bodies) {
+    const collision::ObjNode& node = db_.objects[i];
+    reachBoxes_[i] = collision::grow(collision::worldContainer(node), node.motionBound + db_.tolerance);
+  }
+  run.toc = detectCollisions(db);  // back up to the island's first contact, if any
+  run.elapsed = run.toc.time * run.remaining;
+}
+
+void World::finishIsland(IslandRun& run, double dt) {
+  commitPoses(run.bodies, run.elapsed);
+  run.remaining -= run.elapsed;
+  run.contacts = std::move(run.toc.pairs);  // every pair was gathered at the step's end
+  noteContacts(run.contacts, time_ + (dt - run.remaining));
+}
+
 SweptBody World::pathFrom(int i, const Eigen::AlignedBox3d& start, double duration) const {
   const dynamics::RigidBody& b = bodies_[i];
   SweptBody path;
