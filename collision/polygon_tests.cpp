@@ -351,6 +351,7 @@ PolygonPairOutcome testPolygonPair(const PolygonView& p, const PolygonView& q, d
 
 void recycleContacts(std::vector<Contact>& contacts, PolygonScratch& s) {
   for (Contact& c : contacts) {
+    if (s.spare.size() >= kMaxSpareContacts) break;
     c.points.clear();  // keeps the capacity
     c.gaps.clear();
     s.spare.push_back(std::move(c));

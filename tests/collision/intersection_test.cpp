@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "collision/polygon_tests.h"
 #include "collision/shapes.h"
 #include "collision/tolerances.h"
 #include "tests/test_support.h"
@@ -247,6 +250,26 @@ TEST(Intersection, StopAtInterpenetrationSkipsTheRest) {
   EXPECT_EQ(full.status, Status::Interpenetrating);
   EXPECT_TRUE(fast.pairs[0].contacts.empty());
   EXPECT_NEAR(full.pairs[0].depth, 0.5, 1e-9);
+}
+
+// A workspace tested again and again keeps its pool of emptied contacts bounded: a box on
+// a floor is an area contact built outside the pool (AreaOnPatch::finish) and recycled
+// into it at the next test, one more each time; a refilled pile so grew for good.
+TEST(Intersection, RepeatedTestsKeepTheSpareContactsBounded) {
+  ObjectDatabase db;
+  db.add("floor", std::make_shared<PolygonMesh>(kFloorBox), kFloorPose, true);
+  for (int k = 0; k < 3; ++k)
+    db.add("box" + std::to_string(k), std::make_shared<PolygonMesh>(kUnitBox), pose(V3(2.0 * k, 0, 0.5), rot(0.3 * k, V3::UnitZ())), false);
+  IntersectionWorkspace ws;
+  for (int call = 0; call < 4 * static_cast<int>(kMaxSpareContacts); ++call) {
+    const IntersectionResult r = test4Intersection(db, ws);
+    ASSERT_EQ(r.pairs.size(), 3u);
+    ASSERT_LE(ws.scratch.spare.size(), kMaxSpareContacts) << "call " << call;
+  }
+  std::vector<Contact> many(2 * kMaxSpareContacts);
+  recycleContacts(many, ws.scratch);
+  EXPECT_TRUE(many.empty());
+  EXPECT_EQ(ws.scratch.spare.size(), kMaxSpareContacts);
 }
 
 }  // namespace
