@@ -68,8 +68,8 @@ const StepReport& World::step(double dt) {
   std::vector<collision::PairResult> contactsAfter;
   std::vector<char> stepped(bodies_.size(), 0);
   stepIslands(islandsOfStep(dt), dt, contactsAfter, stepped);
-  for (const collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts
-    if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(p);
+  for (collision::PairResult& p : contacts_)  // sleeping pairs keep their contacts (moved: contacts_ is replaced)
+    if (!stepped[bodies_[p.a].isStatic ? p.b : p.a]) contactsAfter.push_back(std::move(p));
   contacts_ = std::move(contactsAfter);
   report_.sleeping = static_cast<int>(std::count(asleep_.begin(), asleep_.end(), 1));
   const double y = dt - timeCompensation_, sum = time_ + y;  // compensated time_ += dt
