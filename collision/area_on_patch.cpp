@@ -65,16 +65,13 @@ bool AreaOnPatch::isArea(double eps, double& area) {
   return true;
 }
 
-bool AreaOnPatch::finish(std::vector<Contact>& out) const {
+bool AreaOnPatch::finish(std::vector<Contact>& out, PolygonScratch& scratch) const {
   if (pieceEnd_.empty()) return false;
   double areaSum = 0.0;
   for (double a : pieceArea_) areaSum += a;
   auto emit = [&](const Eigen::Vector2d* first, const Eigen::Vector2d* last) {
-    Contact c;
-    c.type = ContactType::Area;
-    c.normal = frame_.normal;
-    c.featureA = {Feature::Kind::Face, p_.faceId};
-    c.featureB = {Feature::Kind::Face, firstFace_};
+    Contact c = makeContact(scratch, ContactType::Area, frame_.normal, {Feature::Kind::Face, p_.faceId},
+                            {Feature::Kind::Face, firstFace_});
     c.points.reserve(static_cast<size_t>(last - first));
     for (const Eigen::Vector2d* x = first; x != last; ++x) {
       double gap = 0.0;

@@ -35,7 +35,8 @@ class AreaOnPatch {
   /// seen on the patch, and whatever the Unsettled faces have within eps of p lies on it:
   /// they add nothing. Otherwise every piece is appended, for the reduction to merge,
   /// and the Unsettled faces must be tested on their own. Each corner has its own gap.
-  bool finish(std::vector<Contact>& out) const;
+  /// The contacts are built in `scratch`'s spare buffers (makeContact).
+  bool finish(std::vector<Contact>& out, PolygonScratch& scratch) const;
   /// The faces that add() found Unsettled, in the order added.
   const std::vector<int>& unsettled() const { return unsettled_; }
 

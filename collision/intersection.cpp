@@ -95,7 +95,7 @@ PairResult testObjectPair(const ObjectDatabase& db, int a, int b, IntersectionWo
         judge(fa, ws.candidates[end].b, nullptr, &ws.patch);
       }
       if (!begun) continue;
-      const bool covered = ws.patch.finish(ws.raw);
+      const bool covered = ws.patch.finish(ws.raw, ws.scratch);
       for (const int fb : ws.patch.unsettled()) {
         if (!covered) {
           judge(fa, fb);

@@ -118,22 +118,6 @@ double depthInto(const PolygonView& p, const double* dP, const PolygonView& q, P
   return std::min(cutDepth, deepestInWedge(q, s.clipB, s));
 }
 
-// A contact without points yet (Contact::addPoint adds them with their gaps), built in a
-// spare one's buffers when there is one (recycleContacts).
-Contact makeContact(PolygonScratch& s, ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b) {
-  Contact c;
-  if (!s.spare.empty()) {  // only the buffers: every other field starts as a new contact's
-    c.points.swap(s.spare.back().points);
-    c.gaps.swap(s.spare.back().gaps);
-    s.spare.pop_back();
-  }
-  c.type = type;
-  c.normal = normal;
-  c.featureA = a;
-  c.featureB = b;
-  return c;
-}
-
 // Face-on-face: two faces facing each other whose overlap (p projected on q) lies within
 // eps of both planes at every corner; judged on the overlap, not on the whole faces, so
 // that a box on a wide floor is face-on-face even when slightly tilted. Appends the
@@ -294,6 +278,20 @@ struct LevelRange {
 };
 
 }  // namespace
+
+Contact makeContact(PolygonScratch& s, ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b) {
+  Contact c;
+  if (!s.spare.empty()) {  // only the buffers: every other field starts as a new contact's
+    c.points.swap(s.spare.back().points);
+    c.gaps.swap(s.spare.back().gaps);
+    s.spare.pop_back();
+  }
+  c.type = type;
+  c.normal = normal;
+  c.featureA = a;
+  c.featureB = b;
+  return c;
+}
 
 double penetrationDepth(const PolygonView& p, const PolygonView& q, double eps, PolygonScratch& s) {
   signedDistances(p, q.plane, s.dP);

@@ -39,11 +39,16 @@ struct PolygonScratch {
   std::vector<Contact> spare;
 };
 
-/// Most emptied contacts PolygonScratch::spare keeps. Contacts built elsewhere
-/// (AreaOnPatch::finish, Contact copies) are recycled into it too, so unbounded it grew
-/// by every one of them for good: a refilled pile's resident memory rose by 1.8 MB every
-/// 1000 steps (polysim_soak, 8000 steps: 11 to 25 MB). One pair's test builds far fewer.
+/// Most emptied contacts PolygonScratch::spare keeps. Every contact recycled into it
+/// should have been built from it (makeContact); one that was not (AreaOnPatch::finish
+/// built its own, once) makes the pool grow for good: a refilled pile's resident memory
+/// rose by 1.8 MB every 1000 steps (polysim_soak, 8000 steps: 11 to 25 MB). The bound
+/// keeps any such imbalance finite; one pair's test builds far fewer.
 inline constexpr size_t kMaxSpareContacts = 256;
+
+/// A contact without points yet (Contact::addPoint adds them with their gaps), built in a
+/// spare one's buffers when there is one (recycleContacts).
+Contact makeContact(PolygonScratch& s, ContactType type, const Eigen::Vector3d& normal, Feature a, Feature b);
 
 /// Empties `contacts`, keeping the buffers of up to kMaxSpareContacts of them in `s` for
 /// the contacts testPolygonPair builds next.
