@@ -3,6 +3,7 @@
 // main solve (contact_solver.cpp) and shock propagation (shock_propagation.h). Internal
 // to the solver.
 
+#include <array>
 #include <vector>
 
 #include "dynamics/contact_row.h"
@@ -32,6 +33,8 @@ struct SweepLayout {
   std::vector<Block> blocks;
   std::vector<int> groupBlocks;  // each group's blocks in the rows' order, group after group
   std::vector<int> groupStart;   // group g's: groupBlocks[groupStart[g], groupStart[g + 1])
+  std::vector<RigidBody*> bodies;              // the rows' bodies, static ones too, each once
+  std::vector<std::array<int, 2>> rowBodies;   // each row's bodies a and b, as indices into `bodies`
 
   int groupCount() const { return static_cast<int>(groupStart.size()) - 1; }
 };
@@ -52,7 +55,9 @@ class ContactSweeps {
   /// if fewer or if at that point no contact moves faster than kSettlingSpeed (a settling
   /// group, settings.h), whose sweeps also stop once they stall (kSettlingStallWindow). Each sweep solves each block's friction rows, then its normal
   /// impulses. Sweeps run in the rows' order (bottom-up: the first carries a stack's
-  /// weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel). `iterations` is the most sweeps any group took; `converged`, whether
+  /// weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel).
+  /// The bodies' velocities are read once before the sweeps and written back once after
+  /// them (moving bodies only); in between the sweeps touch a compact copy. `iterations` is the most sweeps any group took; `converged`, whether
   /// every group stopped on the tolerance.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 
