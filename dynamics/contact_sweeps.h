@@ -53,12 +53,13 @@ class ContactSweeps {
   /// Sweeps each group until no impulse changes by kSolverVelocityTolerance (m/s over the
   /// lighter body's mass) or its limit is reached: kMaxSolverIterations, or `maxSweeps`
   /// if fewer or if at that point no contact moves faster than kSettlingSpeed (a settling
-  /// group, settings.h), whose sweeps also stop once they stall (kSettlingStallWindow). Each sweep solves each block's friction rows, then its normal
-  /// impulses. Sweeps run in the rows' order (bottom-up: the first carries a stack's
-  /// weight down in one pass), then backwards, and so on (symmetric Gauss-Seidel).
-  /// The bodies' velocities are read once before the sweeps and written back once after
-  /// them (moving bodies only); in between the sweeps touch a compact copy. `iterations` is the most sweeps any group took; `converged`, whether
-  /// every group stopped on the tolerance.
+  /// group, settings.h), whose sweeps also stop once they stall (kSettlingStallWindow).
+  /// Each sweep solves each block's friction rows, then its normal impulses. Sweeps run in
+  /// the rows' order (bottom-up: the first carries a stack's weight down in one pass),
+  /// then backwards, and so on (symmetric Gauss-Seidel). The bodies' velocities are read
+  /// once before the sweeps and written back once after them (moving bodies only); in
+  /// between the sweeps touch a compact copy. `iterations` is the most sweeps any group
+  /// took; `converged`, whether every group stopped on the tolerance.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 
   /// The rows of each group of blocks that share no moving body (the groups the sweeps
