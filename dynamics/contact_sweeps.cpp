@@ -81,63 +81,29 @@ std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::
   return groups;
 }
 
-// A body as the sweeps see it: its velocities, copied in before a run and back after it,
-// next to what applying an impulse needs. A sweep then reads one cache line per body,
-// not three of RigidBody's. A static body (or one shock propagation holds fixed) keeps
-// its velocities: they are read, never changed.
-struct SweepBody {
-  Eigen::Vector3d v, w;  // m/s, rad/s, world
-  double inverseMass;    // 1/kg
-  bool moving;
-};
-
-// The relative velocity along an axis (m/s), as velocityAlong() (contact_row.h).
-double along(const Axis& x, const SweepBody& a, const SweepBody& b) {
-  return x.direction.dot(a.v - b.v) + x.angularA.dot(a.w) - x.angularB.dot(b.w);
-}
-
-// Impulse p (N s) along an axis on a, -p on b, as applyAlong() (contact_row.h).
-void apply(const Axis& x, double p, SweepBody& a, SweepBody& b) {
-  if (a.moving) {
-    a.v += (a.inverseMass * p) * x.direction;
-    a.w += p * x.turnA;
-  }
-  if (b.moving) {
-    b.v -= (b.inverseMass * p) * x.direction;
-    b.w -= p * x.turnB;
-  }
-}
-
-// A row's two bodies in the sweeps' state.
-struct RowBodies {
-  SweepBody& a;
-  SweepBody& b;
-  double lighterInverseMass() const { return std::max(a.inverseMass, b.inverseMass); }
-};
-
 // One row's friction impulse, clamped to the disk of its current normal impulse (no
 // work for a frictionless row). Returns the change over the lighter body's mass (m/s).
-double solveFrictionRow(Row& r, RowBodies on) {
+double solveFrictionRow(Row& r) {
   if (r.friction <= 0) return 0.0;
   const Eigen::Vector2d old = r.frictionImpulse;
-  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * along(r.tangentAxis1, on.a, on.b), r.tangentMass2 * along(r.tangentAxis2, on.a, on.b));
+  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * velocityAlong(r, r.tangentAxis1), r.tangentMass2 * velocityAlong(r, r.tangentAxis2));
   const double limit = r.friction * r.normalImpulse;
   if (const double size2 = wanted.squaredNorm(); size2 > limit * limit) wanted *= limit / std::sqrt(size2);
   r.frictionImpulse = wanted;
   const Eigen::Vector2d d = wanted - old;
-  apply(r.tangentAxis1, d.x(), on.a, on.b);
-  apply(r.tangentAxis2, d.y(), on.a, on.b);
-  return d.norm() * on.lighterInverseMass();
+  applyAlong(r, r.tangentAxis1, d.x());
+  applyAlong(r, r.tangentAxis2, d.y());
+  return d.norm() * std::max(r.a->inverseMass, r.b->inverseMass);
 }
 
 // One row's normal impulse, as sequential impulses: the change that brings its normal
 // velocity to its target, clamped so that the accumulated impulse stays >= 0.
-double solveNormalRow(Row& r, RowBodies on) {
-  const double vn = along(r.normalAxis, on.a, on.b);
+double solveNormalRow(Row& r) {
+  const double vn = velocityAlong(r, r.normalAxis);
   const double old = r.normalImpulse;
   r.normalImpulse = std::max(0.0, old - r.normalMass * (vn - r.target));
-  apply(r.normalAxis, r.normalImpulse - old, on.a, on.b);
-  return std::abs(r.normalImpulse - old) * on.lighterInverseMass();
+  applyAlong(r, r.normalAxis, r.normalImpulse - old);
+  return std::abs(r.normalImpulse - old) * std::max(r.a->inverseMass, r.b->inverseMass);
 }
 
 // A block's coupling matrix (constant through a solve: the poses do not move).
@@ -152,27 +118,27 @@ BlockMatrix couplingMatrix(const std::vector<Row>& rows, const std::vector<int>&
 // A block's normal impulses solved together: the accumulated impulses x >= 0 with normal
 // velocities >= their targets and complementary. Falls back to row by row when the
 // small problem has no solution (round-off at a degenerate manifold).
-double solveNormalBlock(std::vector<Row>& rows, const int* block, int n, const SmallLcp* lcp, RowBodies on) {
-  if (n == 1) return solveNormalRow(rows[block[0]], on);
+double solveNormalBlock(std::vector<Row>& rows, const int* block, int n, const SmallLcp* lcp) {
+  if (n == 1) return solveNormalRow(rows[block[0]]);
   const BlockMatrix& A = lcp->matrix();
   BlockVector b(n), old(n);
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
     old(i) = ri.normalImpulse;
-    b(i) = along(ri.normalAxis, on.a, on.b) - ri.target;
+    b(i) = velocityAlong(ri, ri.normalAxis) - ri.target;
   }
   b -= A * old;
   const std::optional<BlockVector> x = lcp->solve(b);
   double change = 0.0;
   if (!x) {
-    for (int i = 0; i < n; ++i) change = std::max(change, solveNormalRow(rows[block[i]], on));
+    for (int i = 0; i < n; ++i) change = std::max(change, solveNormalRow(rows[block[i]]));
     return change;
   }
   for (int i = 0; i < n; ++i) {
     Row& r = rows[block[i]];
     r.normalImpulse = (*x)(i);
-    apply(r.normalAxis, r.normalImpulse - old(i), on.a, on.b);
-    change = std::max(change, std::abs(r.normalImpulse - old(i)) * on.lighterInverseMass());
+    applyAlong(r, r.normalAxis, r.normalImpulse - old(i));
+    change = std::max(change, std::abs(r.normalImpulse - old(i)) * std::max(r.a->inverseMass, r.b->inverseMass));
   }
   return change;
 }
@@ -189,14 +155,8 @@ bool everyRowOf(const SweepLayout& layout, int g, RowTest holds) {
 }
 
 // No contact of group g moves faster than kSettlingSpeed at its point.
-bool settling(const std::vector<Row>& rows, const SweepLayout& layout, const std::vector<SweepBody>& state, int g) {
-  return everyRowOf(layout, g, [&](int row) {
-    const Row& r = rows[row];
-    const SweepBody& a = state[layout.rowBodies[row][0]];
-    const SweepBody& b = state[layout.rowBodies[row][1]];
-    const Eigen::Vector3d relative = (a.v + a.w.cross(r.armA)) - (b.v + b.w.cross(r.armB));  // as relativeVelocity()
-    return relative.squaredNorm() < kSettlingSpeed * kSettlingSpeed;
-  });
+bool settling(const std::vector<Row>& rows, const SweepLayout& layout, int g) {
+  return everyRowOf(layout, g, [&](int row) { return relativeVelocity(rows[row]).squaredNorm() < kSettlingSpeed * kSettlingSpeed; });
 }
 
 // Every moving body of group g ended its last solve at rest, and every contact has
@@ -218,13 +178,13 @@ bool rested(const std::vector<Row>& rows, const SweepLayout& layout, int g) {
 // on (symmetric Gauss-Seidel): a load that must shift across a tall structure travels both
 // ways. Every sweep bottom-up, 600 sweeps a step left the 40-high pyramid leaning out of
 // its plane by 5 cm in 3 s; alternating, 2.4 mm.
-SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, std::vector<SweepBody>& state, int g, int maxSweeps) {
+SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, int g, int maxSweeps) {
   SolveStats stats;
   SettlingProgress progress;
   const int* groupBlocks = layout.groupBlocks.data() + layout.groupStart[g];
   const int blockCount = layout.groupStart[g + 1] - layout.groupStart[g];
   for (int limit = std::min(maxSweeps, kMaxSolverIterations);;) {
-    if (stats.iterations == limit && limit < maxSweeps && settling(rows, layout, state, g) && !rested(rows, layout, g))
+    if (stats.iterations == limit && limit < maxSweeps && settling(rows, layout, g) && !rested(rows, layout, g))
       limit = maxSweeps;
     if (stats.iterations >= limit) break;
     if (limit > kMaxSolverIterations && progress.stalled(stats.iterations)) break;
@@ -234,11 +194,9 @@ SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, std::ve
     for (int n = 0; n < blockCount; ++n) {
       const SweepLayout::Block& block = layout.blocks[groupBlocks[backwards ? blockCount - 1 - n : n]];
       const int* blockRows = layout.blockRows.data() + block.first;
-      const std::array<int, 2>& pair = layout.rowBodies[blockRows[0]];  // a block's rows share their two bodies
-      const RowBodies on{state[pair[0]], state[pair[1]]};
       stats.rowSolves += block.count;
-      for (int i = 0; i < block.count; ++i) largestChange = std::max(largestChange, solveFrictionRow(rows[blockRows[i]], on));
-      largestChange = std::max(largestChange, solveNormalBlock(rows, blockRows, block.count, block.coupling, on));
+      for (int i = 0; i < block.count; ++i) largestChange = std::max(largestChange, solveFrictionRow(rows[blockRows[i]]));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, blockRows, block.count, block.coupling));
     }
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;
@@ -260,14 +218,6 @@ ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount) {
     if (block.count > 1) block.coupling = &couplings_.emplace_back(couplingMatrix(rows, rowsOfBlock));
     layout_.blockRows.insert(layout_.blockRows.end(), rowsOfBlock.begin(), rowsOfBlock.end());
   }
-  std::unordered_map<const RigidBody*, int> indexOf;
-  const auto indexOfBody = [&](RigidBody* body) {
-    const auto [at, fresh] = indexOf.try_emplace(body, static_cast<int>(layout_.bodies.size()));
-    if (fresh) layout_.bodies.push_back(body);
-    return at->second;
-  };
-  layout_.rowBodies.reserve(rows.size());
-  for (const Row& r : rows) layout_.rowBodies.push_back({indexOfBody(r.a), indexOfBody(r.b)});
   layout_.groupStart.push_back(0);
   for (const std::vector<int>& group : groupsOf(rows, blocks, bodyCount)) {
     layout_.groupBlocks.insert(layout_.groupBlocks.end(), group.begin(), group.end());
@@ -276,19 +226,14 @@ ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount) {
 }
 
 SolveStats ContactSweeps::run(std::vector<Row>& rows, int maxSweeps) const {
-  std::vector<SweepBody> state;
-  state.reserve(layout_.bodies.size());
-  for (const RigidBody* b : layout_.bodies) state.push_back({b->velocity, b->angularVelocity, b->inverseMass, !b->isStatic});
   SolveStats stats;
   stats.converged = true;
   for (int g = 0; g < layout_.groupCount(); ++g) {
-    const SolveStats swept = sweepGroup(rows, layout_, state, g, maxSweeps);
+    const SolveStats swept = sweepGroup(rows, layout_, g, maxSweeps);
     stats.iterations = std::max(stats.iterations, swept.iterations);
     stats.converged = stats.converged && swept.converged;
     stats.rowSolves += swept.rowSolves;
   }
-  for (size_t i = 0; i < state.size(); ++i)
-    if (state[i].moving) layout_.bodies[i]->velocity = state[i].v, layout_.bodies[i]->angularVelocity = state[i].w;
   return stats;
 }
 

@@ -3,7 +3,6 @@
 // main solve (contact_solver.cpp) and shock propagation (shock_propagation.h). Internal
 // to the solver.
 
-#include <array>
 #include <vector>
 
 #include "dynamics/contact_row.h"
@@ -33,8 +32,6 @@ struct SweepLayout {
   std::vector<Block> blocks;
   std::vector<int> groupBlocks;  // each group's blocks in the rows' order, group after group
   std::vector<int> groupStart;   // group g's: groupBlocks[groupStart[g], groupStart[g + 1])
-  std::vector<RigidBody*> bodies;              // the rows' bodies, static ones too, each once
-  std::vector<std::array<int, 2>> rowBodies;   // each row's bodies a and b, as indices into `bodies`
 
   int groupCount() const { return static_cast<int>(groupStart.size()) - 1; }
 };
@@ -56,10 +53,8 @@ class ContactSweeps {
   /// group, settings.h), whose sweeps also stop once they stall (kSettlingStallWindow).
   /// Each sweep solves each block's friction rows, then its normal impulses. Sweeps run in
   /// the rows' order (bottom-up: the first carries a stack's weight down in one pass),
-  /// then backwards, and so on (symmetric Gauss-Seidel). The bodies' velocities are read
-  /// once before the sweeps and written back once after them (moving bodies only); in
-  /// between the sweeps touch a compact copy. `iterations` is the most sweeps any group
-  /// took; `converged`, whether every group stopped on the tolerance.
+  /// then backwards, and so on (symmetric Gauss-Seidel). `iterations` is the most sweeps any
+  /// group took; `converged`, whether every group stopped on the tolerance.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 
   /// The rows of each group of blocks that share no moving body (the groups the sweeps
