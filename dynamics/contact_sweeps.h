@@ -34,6 +34,11 @@ struct SweepLayout {
   std::vector<int> groupStart;   // group g's: groupBlocks[groupStart[g], groupStart[g + 1])
 
   int groupCount() const { return static_cast<int>(groupStart.size()) - 1; }
+  int groupRowCount(int g) const {
+    int count = 0;
+    for (int k = groupStart[g]; k < groupStart[g + 1]; ++k) count += blocks[groupBlocks[k]].count;
+    return count;
+  }
 };
 
 /// The rows of one solve, laid out for sweeping: the blocks (an area's corners or a
@@ -54,7 +59,9 @@ class ContactSweeps {
   /// Each sweep solves each block's friction rows, then its normal impulses. Sweeps run in
   /// the rows' order (bottom-up: the first carries a stack's weight down in one pass),
   /// then backwards, and so on (symmetric Gauss-Seidel). `iterations` is the most sweeps any
-  /// group took; `converged`, whether every group stopped on the tolerance.
+  /// group took; `converged`, whether every group stopped on the tolerance. A solve of at
+  /// least kSharedSweepRows rows sweeps its groups on two threads (work_sharing.h), with
+  /// the same result.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 
   /// The rows of each group of blocks that share no moving body (the groups the sweeps
@@ -64,6 +71,7 @@ class ContactSweeps {
  private:
   std::vector<SmallLcp> couplings_;  // one per block of several rows; the layout points into it
   SweepLayout layout_;
+  std::vector<int> groupsLargestFirst_;  // by rows: the order two threads take them in
 };
 
 }  // namespace polysim::dynamics::solver

@@ -86,6 +86,10 @@ inline constexpr double kSettlingSpeed = 0.05;
 inline constexpr int kSettlingStallWindow = 100;
 inline constexpr double kSettlingLeastGain = 0.1;
 
+/// A solve of at least this many rows sweeps its groups (contacts sharing no moving body)
+/// on two threads (contact_sweeps.h): below it, starting a thread costs more than it saves.
+inline constexpr int kSharedSweepRows = 32;
+
 /// The solver stops once no sweep changes any accumulated impulse by more than this
 /// (N s per kg of the lighter body, i.e. m/s). A resting body keeps a residual speed
 /// of this order, so it is set where 60 s of rest drift less than a micrometre.

@@ -10,10 +10,10 @@
 
 namespace polysim::sim {
 
-double threadCpuSeconds() {
+double processCpuSeconds() {
   constexpr double kSecondsPerNanosecond = 1e-9;
   timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + kSecondsPerNanosecond * static_cast<double>(t.tv_nsec);
 }
 
@@ -31,7 +31,7 @@ RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d
   r.initialEnergy = engine.energy();
   r.apexAfterFirstContact.assign(r.initial.size(), std::numeric_limits<double>::quiet_NaN());
   const auto start = std::chrono::steady_clock::now();
-  const double cpuStart = threadCpuSeconds();
+  const double cpuStart = processCpuSeconds();
   double lastMoving = 0.0;  // s
   bool allAtRest = std::all_of(r.initial.begin(), r.initial.end(), [](const BodyState& b) { return b.atRest; });
   for (long k = 0; k < steps; ++k) {
@@ -51,7 +51,7 @@ RunRecord recordRun(Engine& engine, long steps, double dt, const Eigen::Vector3d
   }
   if (allAtRest) r.timeToRest = lastMoving;
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.cpuTime = threadCpuSeconds() - cpuStart;
+  r.cpuTime = processCpuSeconds() - cpuStart;
   r.simTime = steps * dt;
   r.firstContactTime = engine.firstContactTime();
   r.finalEnergy = engine.energy();

@@ -37,9 +37,10 @@ struct RunRecord {
   double heightChange(size_t i) const { return (final[i].position - initial[i].position).dot(up); }
 };
 
-/// CPU time (s) used so far by the calling thread (POSIX: the process's clock would also
-/// count other threads, wall time also counts other processes).
-double threadCpuSeconds();
+/// CPU time (s) used so far by the whole process, every thread of it: the contact solver
+/// sweeps on a second thread (dynamics/work_sharing.h), and that work is the run's too.
+/// Wall time would also count other processes.
+double processCpuSeconds();
 
 /// Steps `engine` `steps` times by dt, calling afterStep (when given) after each step.
 /// `up` is the scene's (Scene::up).

@@ -66,11 +66,11 @@ std::unique_ptr<sim::Engine> engineFor(const sim::Scene& scene, Which which) {
   return std::make_unique<sim::PolysimEngine>(scene, collision::TocMethod::Bisection);
 }
 
-// CPU seconds per step over `steps` steps.
+// CPU seconds per step over `steps` steps (the process's, every thread's).
 double costPerStep(sim::Engine& engine, double dt, long steps) {
-  const double start = sim::threadCpuSeconds();
+  const double start = sim::processCpuSeconds();
   for (long k = 0; k < steps; ++k) engine.step(dt);
-  return (sim::threadCpuSeconds() - start) / static_cast<double>(steps);
+  return (sim::processCpuSeconds() - start) / static_cast<double>(steps);
 }
 
 void BM_FallAsleep(benchmark::State& state, sim::Scene (*make)(int), Which which) {
