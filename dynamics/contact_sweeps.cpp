@@ -221,23 +221,27 @@ ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount) {
     layout_.blockRows.insert(layout_.blockRows.end(), rowsOfBlock.begin(), rowsOfBlock.end());
   }
   layout_.groupStart.push_back(0);
+  std::vector<int> rowCount;  // each group's
   for (const std::vector<int>& group : groupsOf(rows, blocks, bodyCount)) {
     layout_.groupBlocks.insert(layout_.groupBlocks.end(), group.begin(), group.end());
     layout_.groupStart.push_back(static_cast<int>(layout_.groupBlocks.size()));
+    int& count = rowCount.emplace_back(0);
+    for (int block : group) count += layout_.blocks[block].count;
   }
-  groupsLargestFirst_.resize(layout_.groupCount());
-  std::iota(groupsLargestFirst_.begin(), groupsLargestFirst_.end(), 0);
-  const auto rowCount = [&](int g) { return layout_.groupRowCount(g); };
-  std::stable_sort(groupsLargestFirst_.begin(), groupsLargestFirst_.end(), [&](int g, int h) { return rowCount(g) > rowCount(h); });
+  groupOrder_.resize(layout_.groupCount());
+  std::iota(groupOrder_.begin(), groupOrder_.end(), 0);
+  if (shared())  // largest first, so that the two threads finish together
+    std::stable_sort(groupOrder_.begin(), groupOrder_.end(), [&](int g, int h) { return rowCount[g] > rowCount[h]; });
 }
+
+bool ContactSweeps::shared() const { return static_cast<int>(layout_.blockRows.size()) >= kSharedSweepRows; }
 
 SolveStats ContactSweeps::run(std::vector<Row>& rows, int maxSweeps) const {
   // Groups share no moving body and no row, so each sweeps on its own data: on two
   // threads the impulses are the same, to the bit, as on one.
   std::vector<SolveStats> swept(layout_.groupCount());
-  const bool shared = static_cast<int>(layout_.blockRows.size()) >= kSharedSweepRows;
-  forEachPiece(layout_.groupCount(), shared, [&](int k) {
-    const int g = groupsLargestFirst_[k];
+  forEachPiece(layout_.groupCount(), shared(), [&](int k) {
+    const int g = groupOrder_[k];
     swept[g] = sweepGroup(rows, layout_, g, maxSweeps);
   });
   SolveStats stats;

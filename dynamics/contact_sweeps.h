@@ -34,11 +34,6 @@ struct SweepLayout {
   std::vector<int> groupStart;   // group g's: groupBlocks[groupStart[g], groupStart[g + 1])
 
   int groupCount() const { return static_cast<int>(groupStart.size()) - 1; }
-  int groupRowCount(int g) const {
-    int count = 0;
-    for (int k = groupStart[g]; k < groupStart[g + 1]; ++k) count += blocks[groupBlocks[k]].count;
-    return count;
-  }
 };
 
 /// The rows of one solve, laid out for sweeping: the blocks (an area's corners or a
@@ -71,7 +66,9 @@ class ContactSweeps {
  private:
   std::vector<SmallLcp> couplings_;  // one per block of several rows; the layout points into it
   SweepLayout layout_;
-  std::vector<int> groupsLargestFirst_;  // by rows: the order two threads take them in
+  std::vector<int> groupOrder_;  // the order the groups are taken in: largest first if shared()
+
+  bool shared() const;  // whether run() sweeps on two threads (kSharedSweepRows)
 };
 
 }  // namespace polysim::dynamics::solver

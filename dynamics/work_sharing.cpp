@@ -11,8 +11,9 @@ void forEachPiece(int count, bool shared, const std::function<void(int)>& work) 
   const auto takePieces = [&] {
     for (int i = next++; i < count; i = next++) work(i);
   };
+  static const bool twoCores = std::thread::hardware_concurrency() > 1;  // read once: glibc reads /sys each time
   std::thread helper;
-  if (shared && count > 1 && std::thread::hardware_concurrency() > 1) {
+  if (shared && count > 1 && twoCores) {
     try {
       helper = std::thread(takePieces);
     } catch (const std::system_error&) {
