@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 
 #include "collision/intersection.h"
@@ -310,8 +311,11 @@ void World::resolveContacts(const std::vector<collision::PairResult>& contacts, 
   // of 343, seeds 1 to 3, first 8 s: 11.2 against 9.1 s of CPU).
   if (stepStart) warmStartFromLastSolve(lastSolved_, points, horizon);
   const Eigen::Vector3d up = scene_.gravity.isZero(0.0) ? Eigen::Vector3d::Zero() : scene_.up();  // zero: no support order
+  std::optional<SolveProblem> observed;
+  if (solveObserver_) observed = SolveProblem{bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps, up, stepStart};
   const dynamics::SolveStats solved =
       dynamics::solveContacts(bodies_, points, horizon, allowedOverlap, scene_.contact.solverSweeps, up);
+  if (observed) solveObserver_(*observed, bodies_);
   report_.solverIterations += solved.iterations;
   report_.shockSweeps += solved.shockSweeps;
   reach_.noteSolved(contacts, bodies_);

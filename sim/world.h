@@ -129,6 +129,25 @@ class World {
   /// The first time a pair was in contact (s), or a negative value if none yet.
   double firstContactTime() const { return firstContact_; }
 
+  /// What one contact solve is given (dynamics::solveContacts()'s arguments, copied):
+  /// enough to solve it again on its own, as the solver's benchmark does
+  /// (tests/bench/solver_bench.cpp), where the same problems are solved again and again
+  /// without the chaos of a whole run, in which one bit of difference sends a pile
+  /// elsewhere.
+  struct SolveProblem {
+    std::vector<dynamics::RigidBody> bodies;
+    std::vector<dynamics::ContactPoint> points;
+    double horizon = 0.0;         // s
+    double allowedOverlap = 0.0;  // m
+    int maxSweeps = 0;
+    Eigen::Vector3d up = Eigen::Vector3d::Zero();
+    bool stepStart = false;       // the step's first solve (warm-started), not an event's
+  };
+  /// Called after each solve with its problem (the bodies as they were before it) and the
+  /// bodies as it left them; empty (the default): none, and nothing is copied.
+  using SolveObserver = std::function<void(const SolveProblem& problem, const std::vector<dynamics::RigidBody>& solved)>;
+  void observeSolves(SolveObserver observer) { solveObserver_ = std::move(observer); }
+
  private:
   /// Bodies touching something at this point of the step (in `contacts`) that were
   /// flying free get gravity for the next `duration` seconds into their velocity now and
@@ -326,6 +345,7 @@ class World {
   double timeCompensation_ = 0.0;  // Kahan summation: 14400 steps of 1/240 add up to 60 exactly
   double firstContact_ = -1.0;
   StepReport report_;
+  SolveObserver solveObserver_;
 };
 
 }  // namespace polysim::sim
