@@ -86,7 +86,7 @@ inline constexpr double kSettlingSpeed = 0.05;
 /// What a stall is, traced: symmetric sweeps fall into a two-cycle. In a settling column
 /// of ten blocks (pile of 125) the forward and backward sweeps leave the bodies 4e-6 m/s
 /// apart for good, while the change over a pair of sweeps keeps shrinking by 1.1% a sweep;
-/// in a lone line contact, friction slides between its two ends, 7.8e-9 N s a sweep.
+/// in a lone line contact, friction slides between its two ends, 1.2e-8 N s a sweep.
 /// Measured on solver_bench's replays (the same solves each time, so exact: the pile of
 /// 1000 landing and three of piles of 343), not kept: momentum past sweep 60 (nonsmooth
 /// conjugate gradients, Silcowitz et al. 2010) -11% to +16% by replay; stopping on a
