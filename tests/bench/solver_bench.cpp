@@ -12,8 +12,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -31,14 +31,14 @@ constexpr int kCapturedSteps = 30;  // half a second of the landing
 constexpr double kMsPerS = 1e3;
 constexpr double kMillion = 1e6;
 
+// `polysim make pile --count N --seed S`, read as a scene file would be.
 sim::Scene pile(int count, int seed) {
   sim::MakeOptions o;
   o.kind = "pile";
   o.count = count;
   o.seed = static_cast<unsigned long long>(seed);
-  const std::string path = "/tmp/polysim_solver_bench_pile" + std::to_string(count) + "_" + std::to_string(seed) + ".json";
-  std::ofstream(path) << sim::makeScene(o).dump();
-  return sim::loadScene(path);
+  std::istringstream text(sim::makeScene(o).dump());
+  return sim::readScene(text, "pile" + std::to_string(count) + "_seed" + std::to_string(seed) + ".json");
 }
 
 // The solves of kCapturedSteps steps from `startStep` on, kept once per argument set.
