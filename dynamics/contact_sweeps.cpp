@@ -85,8 +85,13 @@ std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::
 
 // One row's friction impulse, clamped to the disk of its current normal impulse (no
 // work for a frictionless row). Returns the change over the lighter body's mass (m/s).
+// A row holding neither a normal nor a friction impulse has a disk of radius zero and
+// stays as it is, whatever the velocities, so they are not read: a speculative contact
+// still apart, an area's corner its block leaves unloaded. A fifth of a settling pile's
+// friction rows are such (pile of 343, seed 1: 11.7 M of 59 M), and skipping them takes
+// 8% of the instructions off the sweeps (callgrind, solver_bench's 343/1/150 replay).
 double solveFrictionRow(Row& r) {
-  if (r.friction <= 0) return 0.0;
+  if (r.friction <= 0 || (r.normalImpulse == 0.0 && r.frictionImpulse.isZero(0.0))) return 0.0;
   const Eigen::Vector2d old = r.frictionImpulse;
   Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * velocityAlong(r, r.tangentAxis1), r.tangentMass2 * velocityAlong(r, r.tangentAxis2));
   const double limit = r.friction * r.normalImpulse;

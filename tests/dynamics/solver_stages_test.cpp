@@ -109,6 +109,38 @@ TEST(SolverStages, AWarmStartTheStepDoesNotNeedAddsNoEnergy) {
   EXPECT_GT(restarted, 100);  // the solves did act
 }
 
+// A box lifting off the ground (0.2 to 1 m/s up, drifting sideways at 0.2 to 0.5 m/s,
+// so that every corner moves away), warm-started as if it had been sliding there: random
+// normal impulses and friction against the drift, too little to stop it (so that the
+// warm start alone takes kinetic energy away and the solve is not started cold). A
+// contact coming apart pushes nothing and holds nothing: every impulse must end at zero
+// and the box keep the velocities it came with. A row holding no impulse at all is
+// skipped by the sweeps (contact_sweeps.cpp); one whose normal impulse fell to zero must
+// still let go of its friction, or the warm start's would go on slowing the box.
+TEST(SolverStages, AContactComingApartLetsGoOfItsWarmStartedFriction) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<RigidBody> bodies = stackOfBoxes(1);
+    RigidBody& box = bodies[1];
+    const V3 drift = (0.35 + 0.15 * u(rng)) * drawnInPlane(u, rng).normalized();
+    box.velocity = drift + V3(0, 0, 0.6 + 0.4 * u(rng));
+    const V3 v = box.velocity;
+    std::vector<ContactPoint> contacts = stackContacts(1, V3::UnitZ(), 0.5 * (1 + u(rng)));
+    for (ContactPoint& c : contacts) {
+      c.normalImpulse = 0.5 * (1 + u(rng));
+      c.frictionImpulse = -std::min(0.7 * c.friction * c.normalImpulse, drift.norm() / 8) * drift.normalized();
+    }
+    solveContacts(bodies, contacts, kDt);
+    for (const ContactPoint& c : contacts) {
+      EXPECT_EQ(c.normalImpulse, 0.0) << "trial " << trial;
+      EXPECT_EQ(c.frictionImpulse.norm(), 0.0) << "trial " << trial;
+    }
+    EXPECT_LT((box.velocity - v).norm(), 1e-12) << "trial " << trial;
+    EXPECT_LT(box.angularVelocity.norm(), 1e-12) << "trial " << trial;
+  }
+}
+
 // A stack of 12 boxes swaying (each box moving and turning at up to 5 cm/s and 0.05
 // rad/s, and falling at a step of gravity), its contacts sticking, solved with 20 sweeps.
 // Gauss-Seidel carries a correction one level per sweep: it leaves boxes moving at up to
