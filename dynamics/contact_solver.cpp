@@ -85,9 +85,10 @@ struct PushRow {
 
 // Sequential impulses on the push velocities alone, in the given order, until no sweep
 // changes a push velocity by kPushVelocityTolerance or kMaxSolverIterations sweeps; true
-// when converged. Most rows push nothing (their groups hold one overlap too deep), and a
-// row whose push impulse does not change applies nothing: 17% of the push sweeps'
-// instructions (callgrind, solver_bench's 343/1/150 replay), the same velocities.
+// when converged. Most rows swept push nothing (their group is swept for an overlap too
+// deep elsewhere in it), and a row whose push impulse does not change applies nothing:
+// 17% of the push sweeps' instructions (callgrind, solver_bench's 343/1/150 replay), the
+// same velocities.
 bool sweepPushes(const std::vector<PushRow>& pushRows) {
   for (int sweep = 0; sweep < kMaxSolverIterations; ++sweep) {
     double largestChange = 0.0;
@@ -96,8 +97,9 @@ bool sweepPushes(const std::vector<PushRow>& pushRows) {
       const double vn = velocityAlong(r, r.normalAxis, kPush);
       const double old = *p.impulse;
       *p.impulse = std::max(0.0, old - r.normalMass * (vn - p.target));
-      if (*p.impulse != old) applyAlong(r, r.normalAxis, *p.impulse - old, kPush);
-      largestChange = std::max(largestChange, std::abs(*p.impulse - old) * std::max(r.a->inverseMass, r.b->inverseMass));
+      const double change = *p.impulse - old;
+      if (change != 0.0) applyAlong(r, r.normalAxis, change, kPush);
+      largestChange = std::max(largestChange, std::abs(change) * std::max(r.a->inverseMass, r.b->inverseMass));
     }
     if (largestChange < kPushVelocityTolerance) return true;
   }
