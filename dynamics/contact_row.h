@@ -87,6 +87,39 @@ inline void applyAlong(Row& r, const Axis& x, double p, Velocities v = kMomentum
   }
 }
 
+// A block's two bodies' velocities (a block's rows share their bodies), held while the
+// sweeps solve its rows and stored once after: a sweep then reads and writes each body
+// once a block, not once per impulse. The same arithmetic as velocityAlong() and
+// applyAlong(), so the same impulses to the bit. A static body (or one shock propagation
+// holds fixed) has zero inverse mass and turns, so an impulse adds nothing to it, and
+// its velocities are never stored back.
+struct PairVelocities {
+  Eigen::Vector3d linearA, angularA, linearB, angularB;
+  double inverseMassA, inverseMassB;  // 1/kg, 0 for a static body
+};
+
+inline PairVelocities velocitiesOf(const Row& r) {
+  return {r.a->velocity, r.a->angularVelocity, r.b->velocity, r.b->angularVelocity, r.a->inverseMass, r.b->inverseMass};
+}
+
+inline void storeVelocities(const PairVelocities& v, const Row& r) {
+  if (!r.a->isStatic) r.a->velocity = v.linearA, r.a->angularVelocity = v.angularA;
+  if (!r.b->isStatic) r.b->velocity = v.linearB, r.b->angularVelocity = v.angularB;
+}
+
+// The relative velocity along an axis (m/s), as velocityAlong().
+inline double velocityAlong(const PairVelocities& v, const Axis& x) {
+  return x.direction.dot(v.linearA - v.linearB) + x.angularA.dot(v.angularA) - x.angularB.dot(v.angularB);
+}
+
+// Impulse p (N s) along an axis on a, -p on b, as applyAlong().
+inline void applyAlong(PairVelocities& v, const Axis& x, double p) {
+  v.linearA += (v.inverseMassA * p) * x.direction;
+  v.angularA += p * x.turnA;
+  v.linearB -= (v.inverseMassB * p) * x.direction;
+  v.angularB -= p * x.turnB;
+}
+
 // 1 / (d . (M_a^-1 + M_b^-1) d) for the unit direction of an axis: the impulse along it
 // that changes the relative velocity along it by 1 m/s (0 between two static bodies).
 inline double effectiveMass(const Row& r, const Axis& x) {

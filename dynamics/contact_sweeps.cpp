@@ -90,27 +90,27 @@ std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::
 // still apart, an area's corner its block leaves unloaded. A fifth of a settling pile's
 // friction rows are such (pile of 343, seed 1: 11.7 M of 59 M), and skipping them takes
 // 8% of the instructions off the sweeps (callgrind, solver_bench's 343/1/150 replay).
-double solveFrictionRow(Row& r) {
+double solveFrictionRow(Row& r, PairVelocities& v) {
   if (r.friction <= 0 || (r.normalImpulse == 0.0 && r.frictionImpulse.isZero(0.0))) return 0.0;
   const Eigen::Vector2d old = r.frictionImpulse;
-  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * velocityAlong(r, r.tangentAxis1), r.tangentMass2 * velocityAlong(r, r.tangentAxis2));
+  Eigen::Vector2d wanted = old - Eigen::Vector2d(r.tangentMass1 * velocityAlong(v, r.tangentAxis1), r.tangentMass2 * velocityAlong(v, r.tangentAxis2));
   const double limit = r.friction * r.normalImpulse;
   if (const double size2 = wanted.squaredNorm(); size2 > limit * limit) wanted *= limit / std::sqrt(size2);
   r.frictionImpulse = wanted;
   const Eigen::Vector2d d = wanted - old;
-  applyAlong(r, r.tangentAxis1, d.x());
-  applyAlong(r, r.tangentAxis2, d.y());
-  return d.norm() * std::max(r.a->inverseMass, r.b->inverseMass);
+  applyAlong(v, r.tangentAxis1, d.x());
+  applyAlong(v, r.tangentAxis2, d.y());
+  return d.norm() * std::max(v.inverseMassA, v.inverseMassB);
 }
 
 // One row's normal impulse, as sequential impulses: the change that brings its normal
 // velocity to its target, clamped so that the accumulated impulse stays >= 0.
-double solveNormalRow(Row& r) {
-  const double vn = velocityAlong(r, r.normalAxis);
+double solveNormalRow(Row& r, PairVelocities& v) {
+  const double vn = velocityAlong(v, r.normalAxis);
   const double old = r.normalImpulse;
   r.normalImpulse = std::max(0.0, old - r.normalMass * (vn - r.target));
-  applyAlong(r, r.normalAxis, r.normalImpulse - old);
-  return std::abs(r.normalImpulse - old) * std::max(r.a->inverseMass, r.b->inverseMass);
+  applyAlong(v, r.normalAxis, r.normalImpulse - old);
+  return std::abs(r.normalImpulse - old) * std::max(v.inverseMassA, v.inverseMassB);
 }
 
 // A block's coupling matrix (constant through a solve: the poses do not move).
@@ -125,27 +125,27 @@ BlockMatrix couplingMatrix(const std::vector<Row>& rows, const std::vector<int>&
 // A block's normal impulses solved together: the accumulated impulses x >= 0 with normal
 // velocities >= their targets and complementary. Falls back to row by row when the
 // small problem has no solution (round-off at a degenerate manifold).
-double solveNormalBlock(std::vector<Row>& rows, const int* block, int n, const SmallLcp* lcp) {
-  if (n == 1) return solveNormalRow(rows[block[0]]);
+double solveNormalBlock(std::vector<Row>& rows, const int* block, int n, const SmallLcp* lcp, PairVelocities& v) {
+  if (n == 1) return solveNormalRow(rows[block[0]], v);
   const BlockMatrix& A = lcp->matrix();
   BlockVector b(n), old(n);
   for (int i = 0; i < n; ++i) {
     const Row& ri = rows[block[i]];
     old(i) = ri.normalImpulse;
-    b(i) = velocityAlong(ri, ri.normalAxis) - ri.target;
+    b(i) = velocityAlong(v, ri.normalAxis) - ri.target;
   }
   b -= A * old;
   const std::optional<BlockVector> x = lcp->solve(b);
   double change = 0.0;
   if (!x) {
-    for (int i = 0; i < n; ++i) change = std::max(change, solveNormalRow(rows[block[i]]));
+    for (int i = 0; i < n; ++i) change = std::max(change, solveNormalRow(rows[block[i]], v));
     return change;
   }
   for (int i = 0; i < n; ++i) {
     Row& r = rows[block[i]];
     r.normalImpulse = (*x)(i);
-    applyAlong(r, r.normalAxis, r.normalImpulse - old(i));
-    change = std::max(change, std::abs(r.normalImpulse - old(i)) * std::max(r.a->inverseMass, r.b->inverseMass));
+    applyAlong(v, r.normalAxis, r.normalImpulse - old(i));
+    change = std::max(change, std::abs(r.normalImpulse - old(i)) * std::max(v.inverseMassA, v.inverseMassB));
   }
   return change;
 }
@@ -202,8 +202,10 @@ SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, int g, 
       const SweepLayout::Block& block = layout.blocks[groupBlocks[backwards ? blockCount - 1 - n : n]];
       const int* blockRows = layout.blockRows.data() + block.first;
       stats.rowSolves += block.count;
-      for (int i = 0; i < block.count; ++i) largestChange = std::max(largestChange, solveFrictionRow(rows[blockRows[i]]));
-      largestChange = std::max(largestChange, solveNormalBlock(rows, blockRows, block.count, block.coupling));
+      PairVelocities v = velocitiesOf(rows[blockRows[0]]);
+      for (int i = 0; i < block.count; ++i) largestChange = std::max(largestChange, solveFrictionRow(rows[blockRows[i]], v));
+      largestChange = std::max(largestChange, solveNormalBlock(rows, blockRows, block.count, block.coupling, v));
+      storeVelocities(v, rows[blockRows[0]]);
     }
     if (largestChange < kSolverVelocityTolerance) {
       stats.converged = true;
