@@ -114,7 +114,7 @@ bool sweepPushes(const std::vector<PushRow>& pushRows) {
 // every event of the step then stalled at once: pile of 1000, seed 6). So they end, as
 // the velocities do, with a pass from the ground up (shock_propagation.h), each level's
 // pushes solved against the levels below held where their pushes take them.
-void solvePushes(std::vector<Row>& rows, const ContactSweeps& sweeps, int bodyCount, double allowedOverlap, double dt,
+void solvePushes(std::vector<Row>& rows, const ContactSweeps& sweeps, double allowedOverlap, double dt,
                  const Eigen::Vector3d& up) {
   for (RigidBody* b : movingBodies(rows)) b->pushVelocity.setZero(), b->pushAngularVelocity.setZero();
   std::vector<double> target(rows.size()), impulse(rows.size(), 0.0);
@@ -127,7 +127,7 @@ void solvePushes(std::vector<Row>& rows, const ContactSweeps& sweeps, int bodyCo
   std::vector<PushRow> reached;
   for (int k : rowsReachedByPushes(sweeps, target)) reached.push_back({&rows[k], &impulse[k], target[k]});
   if (sweepPushes(reached)) return;
-  forEachLevel(rows, bodyCount, up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
+  forEachLevel(rows, up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
     std::vector<PushRow> level;
     for (size_t i = 0; i < sub.size(); ++i) level.push_back({&sub[i], &impulse[picked[i]], target[picked[i]]});
     sweepPushes(level);
@@ -212,7 +212,6 @@ std::vector<std::pair<double, Eigen::Vector2d>> impulsesOf(const std::vector<Row
 
 SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoint>& contacts, double dt,
                          double allowedOverlap, int maxSweeps, const Eigen::Vector3d& up) {
-  const int bodyCount = static_cast<int>(bodies.size());
   std::vector<BodyFrame> frames;
   std::vector<Row> rows = prepareRows(bodies, contacts, dt, frames);
   const std::vector<RigidBody*> moving = movingBodies(rows);
@@ -221,7 +220,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
   const SavedVelocities start(moving);
   warmStart(rows);
 
-  const ContactSweeps sweeps(rows, bodyCount);
+  const ContactSweeps sweeps(rows);
   SolveStats stats;
   const auto sweep = [&] {
     const SolveStats swept = sweeps.run(rows, maxSweeps);
@@ -248,7 +247,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     const SavedVelocities swept(moving);
     const double energySwept = kineticEnergy(moving);
     const std::vector<std::pair<double, Eigen::Vector2d>> impulses = impulsesOf(rows);
-    const SolveStats shock = propagateShock(rows, bodyCount, std::min(maxSweeps, kMaxSolverIterations), up);
+    const SolveStats shock = propagateShock(rows, std::min(maxSweeps, kMaxSolverIterations), up);
     stats.shockSweeps = shock.iterations;
     stats.shockRowSolves = shock.rowSolves;
     // A pass that gains energy (a level pushed by a body below it moving up) is not
@@ -268,7 +267,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     }
   }
   applyRestitution(rows, energyBefore);
-  solvePushes(rows, sweeps, bodyCount, allowedOverlap, dt, up);
+  solvePushes(rows, sweeps, allowedOverlap, dt, up);
   // The test of rest per metre of size (a body's own size is the scene's, not the solver's).
   for (RigidBody* b : moving) b->restedAfterLastSolve = atRest(b->velocity, b->angularVelocity, 1.0);
   for (Row& r : rows) {  // store, for the next step's warm start

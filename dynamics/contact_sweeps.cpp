@@ -10,6 +10,7 @@
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
 #include "dynamics/settling_progress.h"
+#include "dynamics/solve_bodies.h"
 #include "dynamics/work_sharing.h"
 
 namespace polysim::dynamics::solver {
@@ -65,17 +66,18 @@ std::vector<std::vector<int>> blocksOf(const std::vector<Row>& rows) {
 // A sweep of one group changes no velocity another group reads, so each group is swept
 // until it converges on its own: a pile whose one corner will not settle keeps sweeping
 // that corner's group, not every contact of the solve.
-std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks, int bodyCount) {
-  DisjointSets sets(bodyCount);
+std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks) {
+  const SolveBodies bodies(rows);
+  DisjointSets sets(bodies.count());
   for (const std::vector<int>& block : blocks) {
     const Row& r = rows[block.front()];  // a block's rows share their two bodies
-    if (!r.a->isStatic && !r.b->isStatic) sets.join(r.source->a, r.source->b);
+    if (!r.a->isStatic && !r.b->isStatic) sets.join(bodies.a(block.front()), bodies.b(block.front()));
   }
   std::vector<std::vector<int>> groups;
   std::unordered_map<int, size_t> groupOfRoot;
   for (size_t k = 0; k < blocks.size(); ++k) {
-    const Row& r = rows[blocks[k].front()];
-    const int moving = r.a->isStatic ? r.source->b : r.source->a;
+    const int first = blocks[k].front();
+    const int moving = rows[first].a->isStatic ? bodies.b(first) : bodies.a(first);
     const auto [at, fresh] = groupOfRoot.try_emplace(sets.root(moving), groups.size());
     if (fresh) groups.emplace_back();
     groups[at->second].push_back(static_cast<int>(k));
@@ -217,7 +219,7 @@ SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, int g, 
 }
 }  // namespace
 
-ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount) {
+ContactSweeps::ContactSweeps(const std::vector<Row>& rows) {
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
   couplings_.reserve(blocks.size());  // never reallocated: the layout points into it
   for (const std::vector<int>& rowsOfBlock : blocks) {
@@ -229,7 +231,7 @@ ContactSweeps::ContactSweeps(const std::vector<Row>& rows, int bodyCount) {
   }
   layout_.groupStart.push_back(0);
   std::vector<int> rowCount;  // each group's
-  for (const std::vector<int>& group : groupsOf(rows, blocks, bodyCount)) {
+  for (const std::vector<int>& group : groupsOf(rows, blocks)) {
     layout_.groupBlocks.insert(layout_.groupBlocks.end(), group.begin(), group.end());
     layout_.groupStart.push_back(static_cast<int>(layout_.groupBlocks.size()));
     int& count = rowCount.emplace_back(0);

@@ -42,8 +42,7 @@ struct SweepLayout {
 /// solve: the poses and rows' axes do not change while it sweeps.
 class ContactSweeps {
  public:
-  /// `bodyCount`: the size of the body array the rows' sources index.
-  ContactSweeps(const std::vector<Row>& rows, int bodyCount);
+  explicit ContactSweeps(const std::vector<Row>& rows);
   ContactSweeps(const ContactSweeps&) = delete;  // the layout points into couplings_
   ContactSweeps& operator=(const ContactSweeps&) = delete;
 

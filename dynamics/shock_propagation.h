@@ -25,11 +25,11 @@ namespace polysim::dynamics::solver {
 /// its disk) and changing only that level's bodies' velocities; the rows keep the
 /// impulses found (the next step's warm start). Rows with restitution are left out (their
 /// rebound is Poisson's, after this pass), and so are bodies connected to no static body.
-/// `bodyCount`: the size of the body array the rows' sources index; `up`: the unit vector
+/// `up`: the unit vector
 /// against gravity (zero without gravity: every contact then links). The lower bodies take
 /// no reaction, so momentum is not conserved and kinetic energy may rise (a level resting
 /// on a body moving up); the caller checks. Returns the sweeps' work summed over levels.
-SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, const Eigen::Vector3d& up);
+SolveStats propagateShock(std::vector<Row>& rows, int maxSweeps, const Eigen::Vector3d& up);
 
 /// The ranking behind both passes: calls `solveLevel(sub, picked)` for each level from
 /// the ground up, where `picked` are the indices in `rows` of the level's rows (those
@@ -38,7 +38,7 @@ SolveStats propagateShock(std::vector<Row>& rows, int bodyCount, int maxSweeps, 
 /// static as it is at that moment (its velocities and push velocities kept, its masses
 /// infinite), axes prepared again. What `solveLevel` applies to `sub` moves only that
 /// level's bodies.
-void forEachLevel(const std::vector<Row>& rows, int bodyCount, const Eigen::Vector3d& up,
+void forEachLevel(const std::vector<Row>& rows, const Eigen::Vector3d& up,
                   const std::function<void(std::vector<Row>& sub, const std::vector<int>& picked)>& solveLevel);
 
 }  // namespace polysim::dynamics::solver
