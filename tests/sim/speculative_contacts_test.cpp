@@ -153,6 +153,47 @@ TEST(SpeculativeContacts, TouchingPairsKeepTheDetectorsContactsTheWidenedOnesMis
   EXPECT_EQ(static_cast<int>(found[0].contacts.size()), widened + kept);
 }
 
+// A box leaning across three columns on the box below one corner (pile of 1000, seed 22,
+// poses at 10.05 s), in seeded frames: the detector finds the corner 35 um above the
+// face, and the widened test read it 0.6 mm deep along a normal 2.5 degrees off the
+// face's. The solver pushed the box out of that overlap every few steps: it crept at a
+// few mm/s for 15 s and kept its island of 100 boxes awake. No widened gap is below the
+// detector's deepest.
+TEST(SpeculativeContacts, ATouchingPairIsGivenNoGapBelowTheDetectorsDeepest) {
+  const Eigen::Isometry3d below = Eigen::Translation3d(2.237067243844, 0.759640914366, 8.499880097085) *
+                                  Eigen::Quaterniond(0.999995161793, 6.443451e-06, -5.516778e-06, -0.003110678239).normalized();
+  const Eigen::Isometry3d leaning = Eigen::Translation3d(2.225823322935, 1.684140398374, 9.338964514152) *
+                                    Eigen::Quaterniond(0.877798610112, 0.463927687594, 0.113642702596, 0.036414789786).normalized();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int k = 0; k < 8; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const Eigen::Isometry3d frame = k == 0 ? Eigen::Isometry3d::Identity()
+                                           : Eigen::Translation3d(5 * unit(rng), 5 * unit(rng), 5 * unit(rng)) *
+                                                 Eigen::AngleAxisd(M_PI * unit(rng), V3(unit(rng), unit(rng), 1).normalized());
+    collision::ObjectDatabase db;
+    const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(V3(1, 1, 1)));
+    db.add("below", box, frame * below, false);
+    db.add("leaning", box, frame * leaning, false);
+    collision::IntersectionWorkspace ws;
+    const collision::IntersectionResult detected = collision::test4Intersection(db, ws);
+    ASSERT_EQ(detected.status, Status::Contact);
+    ASSERT_EQ(detected.pairs.size(), 1u);
+    double deepest = INFINITY;
+    for (const collision::Contact& c : detected.pairs[0].contacts) deepest = std::min(deepest, c.separation);
+    EXPECT_GT(deepest, 0.0) << "the corner is above the face";
+    const std::vector<PairResult> found =
+        withSpeculativeContacts(db, ws, kSpeculativeReach, {}, detected.pairs, allMoving, everyPair);
+    ASSERT_EQ(found.size(), 1u);
+    int points = 0;
+    for (const collision::Contact& c : found[0].contacts) {
+      EXPECT_GE(c.separation, deepest);
+      for (size_t i = 0; i < c.points.size(); ++i, ++points) EXPECT_GE(c.gapAt(i), deepest);
+    }
+    EXPECT_GT(points, 0);
+  }
+}
+
 // A detector's contact the widened ones share a normal with is still kept when they put
 // the pair's touch elsewhere across that normal: where two edges lie nearly parallel the
 // widened test placed their crossing 1.8 cm along them from the detector's, and the
