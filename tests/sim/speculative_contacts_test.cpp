@@ -34,6 +34,26 @@ collision::ObjectDatabase threeBoxes() {
 const auto everyPair = [](const PairResult&) { return true; };
 const auto allMoving = [](int) { return SpeculativeRole::Moving; };
 
+// Two unit boxes at poses taken from a run, replayed in `count` seeded frames (the
+// world's own first), so that a check does not hang on one placement: the database of
+// the two, box 0 at `first`, for each frame in turn.
+template <typename Check>
+void inSeededFrames(const Eigen::Isometry3d& first, const Eigen::Isometry3d& second, unsigned seed, int count, Check check) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(V3(1, 1, 1)));
+  for (int k = 0; k < count; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const Eigen::Isometry3d frame = k == 0 ? Eigen::Isometry3d::Identity()
+                                           : Eigen::Translation3d(5 * unit(rng), 5 * unit(rng), 5 * unit(rng)) *
+                                                 Eigen::AngleAxisd(M_PI * unit(rng), V3(unit(rng), unit(rng), 1).normalized());
+    collision::ObjectDatabase db;
+    db.add("first", box, frame * first, false);
+    db.add("second", box, frame * second, false);
+    check(db);
+  }
+}
+
 TEST(SpeculativeContacts, PairsWithinTheReachComeWithTheirGaps) {
   collision::ObjectDatabase db = threeBoxes();
   collision::IntersectionWorkspace ws;
@@ -74,17 +94,7 @@ TEST(SpeculativeContacts, APairNotTouchingIsGivenNoGapBelowTheTolerance) {
                                   Eigen::Quaterniond(0.979258, 0.001008, -0.001782, -0.202609).normalized();
   const Eigen::Isometry3d higher = Eigen::Translation3d(-2.5097177, -0.6221664, 9.5002545) *
                                    Eigen::Quaterniond(0.999751, 0.000065, -0.001113, 0.022276).normalized();
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (int k = 0; k < 8; ++k) {
-    SCOPED_TRACE("frame " + std::to_string(k));
-    const Eigen::Isometry3d frame = k == 0 ? Eigen::Isometry3d::Identity()
-                                           : Eigen::Translation3d(5 * unit(rng), 5 * unit(rng), 5 * unit(rng)) *
-                                                 Eigen::AngleAxisd(M_PI * unit(rng), V3(unit(rng), unit(rng), 1).normalized());
-    collision::ObjectDatabase db;
-    const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(V3(1, 1, 1)));
-    db.add("lower", box, frame * lower, false);
-    db.add("higher", box, frame * higher, false);
+  inSeededFrames(lower, higher, 3, 8, [](const collision::ObjectDatabase& db) {
     collision::IntersectionWorkspace ws;
     ASSERT_EQ(collision::test4Intersection(db, ws).status, Status::Separate);
     const std::vector<PairResult> found = withSpeculativeContacts(db, ws, kSpeculativeReach, {}, {}, allMoving, everyPair);
@@ -95,7 +105,7 @@ TEST(SpeculativeContacts, APairNotTouchingIsGivenNoGapBelowTheTolerance) {
       for (size_t i = 0; i < c.points.size(); ++i, ++points) EXPECT_GE(c.gapAt(i), db.tolerance);
     }
     EXPECT_GT(points, 0);
-  }
+  });
 }
 
 // A touching pair the test widens is replaced (once, under body indices); one it does
@@ -164,17 +174,7 @@ TEST(SpeculativeContacts, ATouchingPairIsGivenNoGapBelowTheDetectorsDeepest) {
                                   Eigen::Quaterniond(0.999995161793, 6.443451e-06, -5.516778e-06, -0.003110678239).normalized();
   const Eigen::Isometry3d leaning = Eigen::Translation3d(2.225823322935, 1.684140398374, 9.338964514152) *
                                     Eigen::Quaterniond(0.877798610112, 0.463927687594, 0.113642702596, 0.036414789786).normalized();
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (int k = 0; k < 8; ++k) {
-    SCOPED_TRACE("frame " + std::to_string(k));
-    const Eigen::Isometry3d frame = k == 0 ? Eigen::Isometry3d::Identity()
-                                           : Eigen::Translation3d(5 * unit(rng), 5 * unit(rng), 5 * unit(rng)) *
-                                                 Eigen::AngleAxisd(M_PI * unit(rng), V3(unit(rng), unit(rng), 1).normalized());
-    collision::ObjectDatabase db;
-    const auto box = std::make_shared<collision::PolygonMesh>(collision::makeBox(V3(1, 1, 1)));
-    db.add("below", box, frame * below, false);
-    db.add("leaning", box, frame * leaning, false);
+  inSeededFrames(below, leaning, 5, 8, [](const collision::ObjectDatabase& db) {
     collision::IntersectionWorkspace ws;
     const collision::IntersectionResult detected = collision::test4Intersection(db, ws);
     ASSERT_EQ(detected.status, Status::Contact);
@@ -191,7 +191,7 @@ TEST(SpeculativeContacts, ATouchingPairIsGivenNoGapBelowTheDetectorsDeepest) {
       for (size_t i = 0; i < c.points.size(); ++i, ++points) EXPECT_GE(c.gapAt(i), deepest);
     }
     EXPECT_GT(points, 0);
-  }
+  });
 }
 
 // A detector's contact the widened ones share a normal with is still kept when they put
