@@ -35,9 +35,8 @@ class SavedVelocities {
 // that stopped it. With friction that rebound could end with more kinetic energy than
 // the bodies had before the solve; energy is quadratic in the rebound's scale alpha, so
 // alpha is cut to the largest value in [0, 1] that keeps it at most `energyBefore`.
-void applyRestitution(std::vector<Row>& rows, double energyBefore) {
+void applyRestitution(std::vector<Row>& rows, const std::vector<RigidBody*>& bodies, double energyBefore) {
   if (std::none_of(rows.begin(), rows.end(), [](const Row& r) { return r.restitution > 0; })) return;
-  const std::vector<RigidBody*> bodies = movingBodies(rows);
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> compressed, delta;
   for (const RigidBody* b : bodies) compressed.emplace_back(b->velocity, b->angularVelocity);
   const double e0 = kineticEnergy(bodies);
@@ -116,7 +115,7 @@ bool sweepPushes(const std::vector<PushRow>& pushRows) {
 // pushes solved against the levels below held where their pushes take them.
 void solvePushes(std::vector<Row>& rows, const ContactSweeps& sweeps, double allowedOverlap, double dt,
                  const Eigen::Vector3d& up) {
-  for (RigidBody* b : movingBodies(rows)) b->pushVelocity.setZero(), b->pushAngularVelocity.setZero();
+  for (RigidBody* b : sweeps.bodies().moving(rows)) b->pushVelocity.setZero(), b->pushAngularVelocity.setZero();
   std::vector<double> target(rows.size()), impulse(rows.size(), 0.0);
   bool any = false;
   for (size_t k = 0; k < rows.size(); ++k) {
@@ -127,7 +126,7 @@ void solvePushes(std::vector<Row>& rows, const ContactSweeps& sweeps, double all
   std::vector<PushRow> reached;
   for (int k : rowsReachedByPushes(sweeps, target)) reached.push_back({&rows[k], &impulse[k], target[k]});
   if (sweepPushes(reached)) return;
-  forEachLevel(rows, up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
+  forEachLevel(rows, sweeps.bodies(), up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
     std::vector<PushRow> level;
     for (size_t i = 0; i < sub.size(); ++i) level.push_back({&sub[i], &impulse[picked[i]], target[picked[i]]});
     sweepPushes(level);
@@ -214,13 +213,13 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
                          double allowedOverlap, int maxSweeps, const Eigen::Vector3d& up) {
   std::vector<BodyFrame> frames;
   std::vector<Row> rows = prepareRows(bodies, contacts, dt, frames);
-  const std::vector<RigidBody*> moving = movingBodies(rows);
+  const ContactSweeps sweeps(rows);
+  const std::vector<RigidBody*> moving = sweeps.bodies().moving(rows);
   const double energyBefore = kineticEnergy(moving);
   const auto gainedEnergy = [&](double before) { return kineticEnergy(moving) > before * (1 + kEnergyRoundOff); };
   const SavedVelocities start(moving);
   warmStart(rows);
 
-  const ContactSweeps sweeps(rows);
   SolveStats stats;
   const auto sweep = [&] {
     const SolveStats swept = sweeps.run(rows, maxSweeps);
@@ -247,7 +246,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
     const SavedVelocities swept(moving);
     const double energySwept = kineticEnergy(moving);
     const std::vector<std::pair<double, Eigen::Vector2d>> impulses = impulsesOf(rows);
-    const SolveStats shock = propagateShock(rows, std::min(maxSweeps, kMaxSolverIterations), up);
+    const SolveStats shock = propagateShock(rows, sweeps.bodies(), std::min(maxSweeps, kMaxSolverIterations), up);
     stats.shockSweeps = shock.iterations;
     stats.shockRowSolves = shock.rowSolves;
     // A pass that gains energy (a level pushed by a body below it moving up) is not
@@ -266,7 +265,7 @@ SolveStats solveContacts(std::vector<RigidBody>& bodies, std::vector<ContactPoin
       }
     }
   }
-  applyRestitution(rows, energyBefore);
+  applyRestitution(rows, moving, energyBefore);
   solvePushes(rows, sweeps, allowedOverlap, dt, up);
   // The test of rest per metre of size (a body's own size is the scene's, not the solver's).
   for (RigidBody* b : moving) b->restedAfterLastSolve = atRest(b->velocity, b->angularVelocity, 1.0);

@@ -5,7 +5,6 @@
 #include <numeric>
 #include <optional>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
@@ -14,15 +13,6 @@
 #include "dynamics/work_sharing.h"
 
 namespace polysim::dynamics::solver {
-
-std::vector<RigidBody*> movingBodies(const std::vector<Row>& rows) {
-  std::vector<RigidBody*> bodies;
-  std::unordered_set<const RigidBody*> seen;
-  for (const Row& r : rows)
-    for (RigidBody* b : {r.a, r.b})
-      if (!b->isStatic && seen.insert(b).second) bodies.push_back(b);
-  return bodies;
-}
 
 double kineticEnergy(const std::vector<RigidBody*>& bodies) {
   double e = 0.0;
@@ -66,8 +56,8 @@ std::vector<std::vector<int>> blocksOf(const std::vector<Row>& rows) {
 // A sweep of one group changes no velocity another group reads, so each group is swept
 // until it converges on its own: a pile whose one corner will not settle keeps sweeping
 // that corner's group, not every contact of the solve.
-std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const std::vector<std::vector<int>>& blocks) {
-  const SolveBodies bodies(rows);
+std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const SolveBodies& bodies,
+                                       const std::vector<std::vector<int>>& blocks) {
   DisjointSets sets(bodies.count());
   for (const std::vector<int>& block : blocks) {
     const Row& r = rows[block.front()];  // a block's rows share their two bodies
@@ -219,7 +209,7 @@ SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, int g, 
 }
 }  // namespace
 
-ContactSweeps::ContactSweeps(const std::vector<Row>& rows) {
+ContactSweeps::ContactSweeps(const std::vector<Row>& rows) : bodies_(rows) {
   const std::vector<std::vector<int>> blocks = blocksOf(rows);
   couplings_.reserve(blocks.size());  // never reallocated: the layout points into it
   for (const std::vector<int>& rowsOfBlock : blocks) {
@@ -231,7 +221,7 @@ ContactSweeps::ContactSweeps(const std::vector<Row>& rows) {
   }
   layout_.groupStart.push_back(0);
   std::vector<int> rowCount;  // each group's
-  for (const std::vector<int>& group : groupsOf(rows, blocks)) {
+  for (const std::vector<int>& group : groupsOf(rows, bodies_, blocks)) {
     layout_.groupBlocks.insert(layout_.groupBlocks.end(), group.begin(), group.end());
     layout_.groupStart.push_back(static_cast<int>(layout_.groupBlocks.size()));
     int& count = rowCount.emplace_back(0);

@@ -8,11 +8,9 @@
 #include "dynamics/contact_row.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/small_lcp.h"
+#include "dynamics/solve_bodies.h"
 
 namespace polysim::dynamics::solver {
-
-/// The bodies the rows touch, each once (static ones excluded), in the rows' order.
-std::vector<RigidBody*> movingBodies(const std::vector<Row>& rows);
 
 /// Their kinetic energy (J).
 double kineticEnergy(const std::vector<RigidBody*>& bodies);
@@ -62,7 +60,11 @@ class ContactSweeps {
   /// converge one by one), each group's rows in increasing order.
   std::vector<std::vector<int>> groupRows() const;
 
+  /// The rows' bodies, numbered: for whatever else the solve keeps per body.
+  const SolveBodies& bodies() const { return bodies_; }
+
  private:
+  SolveBodies bodies_;
   std::vector<SmallLcp> couplings_;  // one per block of several rows; the layout points into it
   SweepLayout layout_;
   std::vector<int> groupOrder_;  // the order the groups are taken in: largest first if shared()

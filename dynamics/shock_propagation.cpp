@@ -14,9 +14,10 @@ constexpr int kUnranked = -1;
 
 // Each body's level, by its number in `bodies`: 0 for a static body in the rows, 1 + the
 // lowest level among the bodies it rests on for a moving one (breadth first), kUnranked
-// if it rests on nothing that reaches a static body. A row links the body below to the one above when its
-// normal (from b towards a) leans up or down by kSupportCosine; without gravity (`up`
-// zero) every row links both ways. Rows with restitution do not link.
+// if it rests on nothing that reaches a static body. A row links the body below to the
+// one above when its normal (from b towards a) leans up or down by kSupportCosine;
+// without gravity (`up` zero) every row links both ways. Rows with restitution do not
+// link.
 std::vector<int> levelsOf(const std::vector<Row>& rows, const SolveBodies& bodies, const Eigen::Vector3d& up) {
   std::vector<std::vector<int>> above(static_cast<size_t>(bodies.count()));  // the bodies each one holds up
   std::vector<int> level(static_cast<size_t>(bodies.count()), kUnranked);
@@ -43,9 +44,8 @@ std::vector<int> levelsOf(const std::vector<Row>& rows, const SolveBodies& bodie
 
 }  // namespace
 
-void forEachLevel(const std::vector<Row>& rows, const Eigen::Vector3d& up,
+void forEachLevel(const std::vector<Row>& rows, const SolveBodies& bodies, const Eigen::Vector3d& up,
                   const std::function<void(std::vector<Row>& sub, const std::vector<int>& picked)>& solveLevel) {
-  const SolveBodies bodies(rows);
   const std::vector<int> level = levelsOf(rows, bodies, up);
   std::vector<std::vector<int>> rowsOfLevel;
   for (size_t k = 0; k < rows.size(); ++k) {
@@ -83,9 +83,9 @@ void forEachLevel(const std::vector<Row>& rows, const Eigen::Vector3d& up,
   }
 }
 
-SolveStats propagateShock(std::vector<Row>& rows, int maxSweeps, const Eigen::Vector3d& up) {
+SolveStats propagateShock(std::vector<Row>& rows, const SolveBodies& bodies, int maxSweeps, const Eigen::Vector3d& up) {
   SolveStats stats;
-  forEachLevel(rows, up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
+  forEachLevel(rows, bodies, up, [&](std::vector<Row>& sub, const std::vector<int>& picked) {
     const SolveStats swept = ContactSweeps(sub).run(sub, maxSweeps);
     stats.iterations += swept.iterations;
     stats.rowSolves += swept.rowSolves;

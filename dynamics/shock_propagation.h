@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "dynamics/contact_row.h"
+#include "dynamics/solve_bodies.h"
 
 namespace polysim::dynamics::solver {
 
@@ -29,7 +30,7 @@ namespace polysim::dynamics::solver {
 /// against gravity (zero without gravity: every contact then links). The lower bodies take
 /// no reaction, so momentum is not conserved and kinetic energy may rise (a level resting
 /// on a body moving up); the caller checks. Returns the sweeps' work summed over levels.
-SolveStats propagateShock(std::vector<Row>& rows, int maxSweeps, const Eigen::Vector3d& up);
+SolveStats propagateShock(std::vector<Row>& rows, const SolveBodies& bodies, int maxSweeps, const Eigen::Vector3d& up);
 
 /// The ranking behind both passes: calls `solveLevel(sub, picked)` for each level from
 /// the ground up, where `picked` are the indices in `rows` of the level's rows (those
@@ -38,7 +39,7 @@ SolveStats propagateShock(std::vector<Row>& rows, int maxSweeps, const Eigen::Ve
 /// static as it is at that moment (its velocities and push velocities kept, its masses
 /// infinite), axes prepared again. What `solveLevel` applies to `sub` moves only that
 /// level's bodies.
-void forEachLevel(const std::vector<Row>& rows, const Eigen::Vector3d& up,
+void forEachLevel(const std::vector<Row>& rows, const SolveBodies& bodies, const Eigen::Vector3d& up,
                   const std::function<void(std::vector<Row>& sub, const std::vector<int>& picked)>& solveLevel);
 
 }  // namespace polysim::dynamics::solver

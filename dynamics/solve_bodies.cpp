@@ -1,5 +1,7 @@
 #include "dynamics/solve_bodies.h"
 
+#include <utility>
+
 namespace polysim::dynamics::solver {
 
 SolveBodies::SolveBodies(const std::vector<Row>& rows) {
@@ -16,6 +18,15 @@ SolveBodies::SolveBodies(const std::vector<Row>& rows) {
       numbers_.push_back(number);
     }
   for (const Row& r : rows) numberOf[static_cast<std::size_t>(r.source->a)] = numberOf[static_cast<std::size_t>(r.source->b)] = -1;
+}
+
+std::vector<RigidBody*> SolveBodies::moving(const std::vector<Row>& rows) const {
+  std::vector<RigidBody*> bodies;
+  std::vector<char> seen(static_cast<std::size_t>(count_), 0);
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    for (const auto& [number, body] : {std::pair{a(k), rows[k].a}, std::pair{b(k), rows[k].b}})
+      if (char& once = seen[static_cast<std::size_t>(number)]; !body->isStatic && !once) once = 1, bodies.push_back(body);
+  return bodies;
 }
 
 }  // namespace polysim::dynamics::solver

@@ -22,6 +22,9 @@ class SolveBodies {
   /// The numbers of row k's bodies a and b.
   int a(std::size_t k) const { return numbers_[2 * k]; }
   int b(std::size_t k) const { return numbers_[2 * k + 1]; }
+  /// The moving bodies the rows name (static ones left out), each once, in the order the
+  /// rows first name them. `rows` are the rows numbered.
+  std::vector<RigidBody*> moving(const std::vector<Row>& rows) const;
 
  private:
   int count_ = 0;
