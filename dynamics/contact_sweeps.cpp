@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <optional>
-#include <unordered_map>
+#include <utility>
 
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
@@ -33,46 +33,69 @@ void prepareAxes(Row& r) {
 
 namespace {
 
-// The rows of each contact, in the order their first rows come: an area's corners or a
-// line's ends are one block; a point, or a contact larger than kMaxBlockSize, one per row.
-std::vector<std::vector<int>> blocksOf(const std::vector<Row>& rows) {
-  std::vector<std::vector<int>> blocks;
-  std::unordered_map<int, size_t> blockOf;  // manifold id -> its block
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const int id = rows[k].source->manifold;
-    const auto [at, fresh] = blockOf.try_emplace(id, blocks.size());
-    if (id < 0 || fresh) blocks.push_back({static_cast<int>(k)});
-    else blocks[at->second].push_back(static_cast<int>(k));
+// Lays out the blocks, in the order their first rows come: the rows of each contact
+// (sharing a manifold id, in the rows' order) are a block, an area's corners or a line's
+// ends; a point, or a contact larger than kMaxBlockSize, is a block of one row. A
+// contact's rows need not be consecutive: the rows come in the order the sweeps take
+// them (bottom-up), corners of different contacts interleaved.
+void layBlocks(const std::vector<Row>& rows, SweepLayout& layout) {
+  const int n = static_cast<int>(rows.size());
+  std::vector<std::pair<int, int>> byId;  // (manifold id, row) of the rows in a manifold
+  for (int k = 0; k < n; ++k)
+    if (const int id = rows[k].source->manifold; id >= 0) byId.emplace_back(id, k);
+  std::sort(byId.begin(), byId.end());
+  std::vector<int> runAt(static_cast<size_t>(n), -1);  // a manifold's first row: where its run starts in byId
+  for (size_t i = 0; i < byId.size(); ++i)
+    if (i == 0 || byId[i].first != byId[i - 1].first) runAt[byId[i].second] = static_cast<int>(i);
+  layout.blockRows.reserve(static_cast<size_t>(n));
+  const auto addBlock = [&](int count) {
+    layout.blocks.push_back({static_cast<int>(layout.blockRows.size()) - count, count, nullptr});
+  };
+  for (int k = 0; k < n; ++k) {
+    if (rows[k].source->manifold < 0) {
+      layout.blockRows.push_back(k), addBlock(1);
+      continue;
+    }
+    if (runAt[k] < 0) continue;  // a later row of a manifold: laid out with its first
+    size_t end = static_cast<size_t>(runAt[k]);
+    while (end < byId.size() && byId[end].first == byId[runAt[k]].first) ++end;
+    const int count = static_cast<int>(end) - runAt[k];
+    for (size_t i = static_cast<size_t>(runAt[k]); i < end; ++i) {
+      layout.blockRows.push_back(byId[i].second);
+      if (count > kMaxBlockSize) addBlock(1);
+    }
+    if (count <= kMaxBlockSize) addBlock(count);
   }
-  std::vector<std::vector<int>> split;
-  for (std::vector<int>& b : blocks) {
-    if (static_cast<int>(b.size()) <= kMaxBlockSize) split.push_back(std::move(b));
-    else for (int k : b) split.push_back({k});
-  }
-  return split;
 }
 
-// The blocks in groups that share no moving body, each group's blocks in their order.
-// A sweep of one group changes no velocity another group reads, so each group is swept
-// until it converges on its own: a pile whose one corner will not settle keeps sweeping
-// that corner's group, not every contact of the solve.
-std::vector<std::vector<int>> groupsOf(const std::vector<Row>& rows, const SolveBodies& bodies,
-                                       const std::vector<std::vector<int>>& blocks) {
+// Lays the blocks out in groups that share no moving body, each group's blocks in their
+// order, the groups in the order of their first blocks. A sweep of one group changes no
+// velocity another group reads, so each group is swept until it converges on its own: a
+// pile whose one corner will not settle keeps sweeping that corner's group, not every
+// contact of the solve.
+void layGroups(const std::vector<Row>& rows, const SolveBodies& bodies, SweepLayout& layout) {
+  const int blockCount = static_cast<int>(layout.blocks.size());
+  const auto firstRow = [&](int block) { return layout.blockRows[layout.blocks[block].first]; };
   DisjointSets sets(bodies.count());
-  for (const std::vector<int>& block : blocks) {
-    const Row& r = rows[block.front()];  // a block's rows share their two bodies
-    if (!r.a->isStatic && !r.b->isStatic) sets.join(bodies.a(block.front()), bodies.b(block.front()));
+  for (int k = 0; k < blockCount; ++k) {
+    const Row& r = rows[firstRow(k)];  // a block's rows share their two bodies
+    if (!r.a->isStatic && !r.b->isStatic) sets.join(bodies.a(firstRow(k)), bodies.b(firstRow(k)));
   }
-  std::vector<std::vector<int>> groups;
-  std::unordered_map<int, size_t> groupOfRoot;
-  for (size_t k = 0; k < blocks.size(); ++k) {
-    const int first = blocks[k].front();
+  std::vector<int> groupOfRoot(static_cast<size_t>(bodies.count()), -1), groupOf(static_cast<size_t>(blockCount));
+  std::vector<int>& start = layout.groupStart;  // each group's size, then where it starts
+  start.assign(1, 0);
+  for (int k = 0; k < blockCount; ++k) {
+    const int first = firstRow(k);
     const int moving = rows[first].a->isStatic ? bodies.b(first) : bodies.a(first);
-    const auto [at, fresh] = groupOfRoot.try_emplace(sets.root(moving), groups.size());
-    if (fresh) groups.emplace_back();
-    groups[at->second].push_back(static_cast<int>(k));
+    int& group = groupOfRoot[static_cast<size_t>(sets.root(moving))];
+    if (group < 0) group = static_cast<int>(start.size()) - 1, start.push_back(0);
+    groupOf[k] = group;
+    ++start[group + 1];
   }
-  return groups;
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int> next(start.begin(), start.end() - 1);
+  layout.groupBlocks.resize(static_cast<size_t>(blockCount));
+  for (int k = 0; k < blockCount; ++k) layout.groupBlocks[next[groupOf[k]]++] = k;
 }
 
 // One row's friction impulse, clamped to the disk of its current normal impulse (no
@@ -106,8 +129,7 @@ double solveNormalRow(Row& r, PairVelocities& v) {
 }
 
 // A block's coupling matrix (constant through a solve: the poses do not move).
-BlockMatrix couplingMatrix(const std::vector<Row>& rows, const std::vector<int>& block) {
-  const int n = static_cast<int>(block.size());
+BlockMatrix couplingMatrix(const std::vector<Row>& rows, const int* block, int n) {
   BlockMatrix A(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) A(i, j) = coupling(rows[block[i]], rows[block[j]]);
@@ -210,27 +232,23 @@ SolveStats sweepGroup(std::vector<Row>& rows, const SweepLayout& layout, int g, 
 }  // namespace
 
 ContactSweeps::ContactSweeps(const std::vector<Row>& rows) : bodies_(rows) {
-  const std::vector<std::vector<int>> blocks = blocksOf(rows);
-  couplings_.reserve(blocks.size());  // never reallocated: the layout points into it
-  for (const std::vector<int>& rowsOfBlock : blocks) {
-    SweepLayout::Block& block = layout_.blocks.emplace_back();
-    block.first = static_cast<int>(layout_.blockRows.size());
-    block.count = static_cast<int>(rowsOfBlock.size());
-    if (block.count > 1) block.coupling = &couplings_.emplace_back(couplingMatrix(rows, rowsOfBlock));
-    layout_.blockRows.insert(layout_.blockRows.end(), rowsOfBlock.begin(), rowsOfBlock.end());
-  }
-  layout_.groupStart.push_back(0);
-  std::vector<int> rowCount;  // each group's
-  for (const std::vector<int>& group : groupsOf(rows, bodies_, blocks)) {
-    layout_.groupBlocks.insert(layout_.groupBlocks.end(), group.begin(), group.end());
-    layout_.groupStart.push_back(static_cast<int>(layout_.groupBlocks.size()));
-    int& count = rowCount.emplace_back(0);
-    for (int block : group) count += layout_.blocks[block].count;
-  }
+  layBlocks(rows, layout_);
+  const auto coupled = [](const SweepLayout::Block& b) { return b.count > 1; };
+  const auto several = std::count_if(layout_.blocks.begin(), layout_.blocks.end(), coupled);
+  couplings_.reserve(static_cast<size_t>(several));  // never reallocated: the layout points into it
+  for (SweepLayout::Block& block : layout_.blocks)
+    if (coupled(block))
+      block.coupling = &couplings_.emplace_back(couplingMatrix(rows, &layout_.blockRows[block.first], block.count));
+  layGroups(rows, bodies_, layout_);
   groupOrder_.resize(layout_.groupCount());
   std::iota(groupOrder_.begin(), groupOrder_.end(), 0);
-  if (shared())  // largest first, so that the two threads finish together
+  if (shared()) {  // largest first, so that the two threads finish together
+    std::vector<int> rowCount(groupOrder_.size(), 0);  // each group's
+    for (int g = 0; g < layout_.groupCount(); ++g)
+      for (int k = layout_.groupStart[g]; k < layout_.groupStart[g + 1]; ++k)
+        rowCount[g] += layout_.blocks[layout_.groupBlocks[k]].count;
     std::stable_sort(groupOrder_.begin(), groupOrder_.end(), [&](int g, int h) { return rowCount[g] > rowCount[h]; });
+  }
 }
 
 bool ContactSweeps::shared() const { return static_cast<int>(layout_.blockRows.size()) >= kSharedSweepRows; }

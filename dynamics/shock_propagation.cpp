@@ -1,7 +1,8 @@
 #include "dynamics/shock_propagation.h"
 
 #include <algorithm>
-#include <deque>
+#include <numeric>
+#include <utility>
 
 #include "dynamics/contact_sweeps.h"
 #include "dynamics/settings.h"
@@ -19,25 +20,30 @@ constexpr int kUnranked = -1;
 // without gravity (`up` zero) every row links both ways. Rows with restitution do not
 // link.
 std::vector<int> levelsOf(const std::vector<Row>& rows, const SolveBodies& bodies, const Eigen::Vector3d& up) {
-  std::vector<std::vector<int>> above(static_cast<size_t>(bodies.count()));  // the bodies each one holds up
-  std::vector<int> level(static_cast<size_t>(bodies.count()), kUnranked);
-  std::deque<int> queue;
+  const size_t count = static_cast<size_t>(bodies.count());
+  std::vector<std::pair<int, int>> holds;  // (body below, body above) of each link
+  std::vector<int> level(count, kUnranked), queue;  // queue: breadth first, taken from `next`
   const bool anyWay = up.isZero(0.0);
   for (size_t k = 0; k < rows.size(); ++k) {
     const Row& r = rows[k];
     if (r.restitution > 0) continue;
     const int a = bodies.a(k), b = bodies.b(k);
     const double rise = r.normal.dot(up);  // > 0: a rests on b
-    if (anyWay || rise >= kSupportCosine) above[b].push_back(a);
-    if (anyWay || rise <= -kSupportCosine) above[a].push_back(b);
+    if (anyWay || rise >= kSupportCosine) holds.emplace_back(b, a);
+    if (anyWay || rise <= -kSupportCosine) holds.emplace_back(a, b);
     for (const auto& [i, body] : {std::pair{a, r.a}, std::pair{b, r.b}})
       if (body->isStatic && level[i] == kUnranked) level[i] = 0, queue.push_back(i);
   }
-  while (!queue.empty()) {
-    const int i = queue.front();
-    queue.pop_front();
-    for (int j : above[i])
-      if (level[j] == kUnranked) level[j] = level[i] + 1, queue.push_back(j);
+  // The bodies each one holds up, in the rows' order: above[aboveStart[i], aboveStart[i + 1]).
+  std::vector<int> aboveStart(count + 1, 0), above(holds.size());
+  for (const auto& [below, onIt] : holds) ++aboveStart[below + 1];
+  std::partial_sum(aboveStart.begin(), aboveStart.end(), aboveStart.begin());
+  std::vector<int> fill(aboveStart.begin(), aboveStart.end() - 1);
+  for (const auto& [below, onIt] : holds) above[fill[below]++] = onIt;
+  for (size_t next = 0; next < queue.size(); ++next) {
+    const int i = queue[next];
+    for (int k = aboveStart[i]; k < aboveStart[i + 1]; ++k)
+      if (const int j = above[k]; level[j] == kUnranked) level[j] = level[i] + 1, queue.push_back(j);
   }
   return level;
 }
@@ -59,23 +65,30 @@ void forEachLevel(const std::vector<Row>& rows, const SolveBodies& bodies, const
   for (size_t L = 1; L < rowsOfLevel.size(); ++L) {
     const std::vector<int>& picked = rowsOfLevel[L];
     if (picked.empty()) continue;
-    std::deque<RigidBody> fixed;  // stable addresses
-    std::vector<RigidBody*> fixedOf(static_cast<size_t>(bodies.count()), nullptr);  // by body number
-    auto heldFixed = [&](int number, RigidBody* body) {
-      RigidBody*& held = fixedOf[static_cast<size_t>(number)];
-      if (!held) {
-        held = &fixed.emplace_back(*body);
-        held->isStatic = true;
-        held->inverseMass = 0.0;
+    // Each lower body a row of the level touches, copied once and marked static; the
+    // rows point at the copies once all are made (the vector may move them till then).
+    std::vector<RigidBody> fixed;
+    std::vector<int> fixedOf(static_cast<size_t>(bodies.count()), -1);  // by body number: its copy in `fixed`
+    std::vector<std::pair<int, int>> heldEnds;  // each row's a and b: its copy in `fixed`, or -1
+    heldEnds.reserve(picked.size());
+    auto heldFixed = [&](int number, const RigidBody* body) {
+      if (body->isStatic || level[number] >= static_cast<int>(L)) return -1;
+      int& held = fixedOf[static_cast<size_t>(number)];
+      if (held < 0) {
+        held = static_cast<int>(fixed.size());
+        RigidBody& copy = fixed.emplace_back(*body);
+        copy.isStatic = true;
+        copy.inverseMass = 0.0;
       }
       return held;
     };
+    for (int k : picked) heldEnds.emplace_back(heldFixed(bodies.a(k), rows[k].a), heldFixed(bodies.b(k), rows[k].b));
     std::vector<Row> sub;
     sub.reserve(picked.size());
-    for (int k : picked) {
-      Row r = rows[k];
-      if (!r.a->isStatic && level[bodies.a(k)] < static_cast<int>(L)) r.a = heldFixed(bodies.a(k), r.a);
-      if (!r.b->isStatic && level[bodies.b(k)] < static_cast<int>(L)) r.b = heldFixed(bodies.b(k), r.b);
+    for (size_t i = 0; i < picked.size(); ++i) {
+      Row r = rows[picked[i]];
+      if (heldEnds[i].first >= 0) r.a = &fixed[heldEnds[i].first];
+      if (heldEnds[i].second >= 0) r.b = &fixed[heldEnds[i].second];
       prepareAxes(r);
       sub.push_back(r);
     }

@@ -64,9 +64,11 @@ void appendContactPoints(int a, int b, const std::vector<collision::Contact>& co
                          std::vector<dynamics::ContactPoint>& out, const EdgeDirection& edgeDirection) {
   const double sameDirection = std::cos(kCoplanarContactAngle);
   std::vector<char> taken(contacts.size(), 0);
+  std::vector<const collision::Contact*> group;  // one plane's contacts; reused, as is `points`
+  std::vector<PlanePoint> points;
   for (size_t first = 0; first < contacts.size(); ++first) {
     if (taken[first]) continue;
-    std::vector<const collision::Contact*> group{&contacts[first]};
+    group.assign(1, &contacts[first]);
     for (size_t k = first + 1; k < contacts.size(); ++k)
       if (!taken[k] && contacts[k].normal.dot(contacts[first].normal) >= sameDirection) {
         taken[k] = 1;
@@ -84,7 +86,7 @@ void appendContactPoints(int a, int b, const std::vector<collision::Contact>& co
     for (const collision::Contact* c : group)
       if (turnOf(*c) != turnWithA) turnWithA = 0.5;
     const Eigen::Vector3d n = deepest.normal, t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-    std::vector<PlanePoint> points;
+    points.clear();
     for (const collision::Contact* c : group)
       for (size_t i = 0; i < c->points.size(); ++i) points.push_back({t1.dot(c->points[i]), t2.dot(c->points[i]), c->points[i], c->gapAt(i)});
     // A contact on its own is already its polygon's corners (or a segment, or a point), in
