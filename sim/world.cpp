@@ -195,21 +195,17 @@ std::vector<int> World::takeEvent(IslandRun& run, double dt) {
     for (size_t i = 0; i < only.size(); ++i) only[i] = tested[i] && !speculated[i], speculated[i] = tested[i];
     return only;
   };
-  std::vector<collision::PairResult> solved = contacts;
-  if (elapsed > 0.0) {
+  const auto remakeSolverContacts = [&](const std::vector<collision::PairResult>& now) {
     const std::vector<char> only = newlyTested();
-    solved = solverContacts(db, islandIds_, contacts, &only);
-  }
+    return solverContacts(db, islandIds_, now, &only);
+  };
+  std::vector<collision::PairResult> solved = elapsed > 0.0 ? remakeSolverContacts(contacts) : contacts;
   // Which pairs bounce is judged before the solve turns their approach into a rebound:
   // judged after it, a bounced box was taken for landed and given the rest of the step's
   // gravity at once (at dt 1 s, 9 m/s down, which it then bounced off: +12 J a step).
   const BodyPairs bouncing = bouncingPairs(contacts);
   // Only the groups of contacts the event disturbed are solved again (event_reach.h); a
   // stalled event pushes all of its contacts apart.
-  const auto remakeSolverContacts = [&](const std::vector<collision::PairResult>& now) {
-    const std::vector<char> only = newlyTested();
-    return solverContacts(db, islandIds_, now, &only);
-  };
   if (elapsed > 0.0) solved = reachedAtEvent(db, std::move(solved), crossing, tested, contacts, remakeSolverContacts);
   resolveContacts(solved, remaining, false, allowedOverlap);  // impulses at the contact
   if (supportTouchingBodies(contacts, bouncing, remaining)) {  // bodies that landed take the rest of the step's gravity,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
 
 #include "collision/broadphase.h"
 #include "collision/intersection.h"
@@ -76,7 +77,8 @@ std::vector<collision::PairResult> World::reachedAtEvent(
     const std::vector<std::pair<int, int>>& crossing, std::vector<char>& tested, std::vector<collision::PairResult>& contacts,
     const std::function<std::vector<collision::PairResult>(const std::vector<collision::PairResult>&)>& remake) {
   for (;;) {
-    std::vector<collision::PairResult> reached = reach_.reached(solverContacts, crossing, bodies_, sizes_);
+    // solverContacts is not read again before it is remade below.
+    std::vector<collision::PairResult> reached = reach_.reached(std::move(solverContacts), crossing, bodies_, sizes_);
     std::vector<char> want(bodies_.size(), 0);
     bool more = false;
     for (const collision::PairResult& p : reached)
