@@ -152,6 +152,50 @@ TEST(SmallLcp, ASequenceOfProblemsIsSolvedAsEachAlone) {
   EXPECT_GT(someLifting, 50);
 }
 
+// One SmallLcp keeps the set its last solve took and tries it first (small_lcp.cpp); it
+// must answer each problem as a fresh one does, to the bit, above all where several sets
+// hold: problems built from an answer x and velocities w with points at zero impulse and
+// zero velocity both (a set with or without such a point holds), on random regular
+// matrices and on a face's four coplanar corners (rank 3).
+TEST(SmallLcp, AKeptSetAnswersToTheBitAsAFreshSolveWhereSeveralSetsHold) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1), positive(0.1, 1.0);
+  std::bernoulli_distribution half(0.5);
+  int degenerate = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 2 + trial % (kMaxBlockSize - 1);
+    BlockMatrix A(n, n);
+    if (n == 4 && trial % 2) {  // a face's corners, as in RandomSingularProblemsLiftTheCornersTheyMust
+      Eigen::MatrixXd J(4, 3);
+      for (int i = 0; i < 4; ++i) J.row(i) << 1.0, 0.5 * (i < 2 ? 1 : -1) + 0.1 * u(rng), 0.5 * (i % 2 ? 1 : -1) + 0.1 * u(rng);
+      A = J * Eigen::Vector3d(1.0, 6.0, 6.0).asDiagonal() * J.transpose();
+    } else {
+      Eigen::MatrixXd M(n, n);
+      for (int i = 0; i < n * n; ++i) M(i) = u(rng);
+      A = M * M.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    }
+    const SmallLcp kept(A);
+    for (int k = 0; k < 12; ++k) {
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(n), w = Eigen::VectorXd::Zero(n);
+      bool several = false;
+      for (int i = 0; i < n; ++i) {
+        if (half(rng)) x(i) = positive(rng);
+        else if (half(rng)) w(i) = positive(rng);
+        else several = true;  // zero impulse and zero velocity: in the set or out of it
+      }
+      degenerate += several;
+      const BlockVector b = w - A * x;
+      const std::optional<BlockVector> reused = kept.solve(b);
+      const std::optional<BlockVector> fresh = SmallLcp(A).solve(b);
+      ASSERT_EQ(reused.has_value(), fresh.has_value()) << "trial " << trial << ", problem " << k;
+      if (!fresh) continue;
+      for (int i = 0; i < n; ++i)
+        ASSERT_EQ((*reused)(i), (*fresh)(i)) << "trial " << trial << ", problem " << k << ", point " << i;
+    }
+  }
+  EXPECT_GT(degenerate, 500) << "problems where several sets hold";
+}
+
 RigidBody unitCube() {
   MassProperties props;
   props.mass = 1.0;
