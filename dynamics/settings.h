@@ -137,16 +137,6 @@ inline constexpr double kPushVelocityTolerance = 1e-9;
 /// coefficient. Far above double round-off, far below any physical impulse ratio.
 inline constexpr double kLcpRoundOff = 1e-9;
 
-/// A block's set of pushing points from its last solve is kept, unchecked against the
-/// sets tried before it, only where every point outside it separates at more than this
-/// many round-off scales (kLcpRoundOff's): then no other set holds with the same solution
-/// (small_lcp.cpp). A set that holds is a solution within round-off either way; the
-/// margin keeps the choice among near-equal ones the order's. At 1 scale the pile of
-/// 1000's first 3 s (seed 1) went another way; at 1000 it took the set the largest-first
-/// order takes in every one of its 18.9 M block solves. Trying the full set, then the last
-/// one, with no such check, left two boxes of the tilted towers of ten (seed 2) awake.
-inline constexpr double kLcpKeptSetMargin = 1e3;
-
 /// Relative round-off allowed when the solver checks that a solve did not raise the
 /// bodies' kinetic energy (contact_solver.cpp): far below any physical gain, far above
 /// the round-off of summing a pile's energies.

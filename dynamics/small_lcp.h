@@ -38,14 +38,10 @@ class SmallLcp {
  private:
   // Set `set`'s pseudo-inverse expanded to n x n (zero outside the set), made on first use.
   const double* expandedPseudoInverse(unsigned set, int n) const;
-  // One set tried for a problem of size N; empty when it does not hold. `undecided`, when
-  // given and the set holds, tells whether some point outside it separates no faster than
-  // kLcpKeptSetMargin scales: a set with that point added may hold too.
+  // One set tried for a problem of size N; empty when it does not hold.
   template <int N>
-  std::optional<BlockVector> solveWithSet(unsigned set, const BlockVector& b, double scale,
-                                          bool* undecided = nullptr) const;
-  // The first set that holds, largest first, for a problem of size N; the set that held
-  // at the last solve is tried first and kept where no larger or earlier set can hold.
+  std::optional<BlockVector> solveWithSet(unsigned set, const BlockVector& b, double scale) const;
+  // Every set, largest first, for a problem of size N.
   template <int N>
   std::optional<BlockVector> solveSized(const BlockVector& b, double scale) const;
 
@@ -55,10 +51,6 @@ class SmallLcp {
   // made_). Raw storage, so that making a SmallLcp touches only A_ and made_: a pile's
   // solve makes thousands, most of which try one set.
   mutable unsigned made_ = 0;
-  // The set whose solution the last solve returned (none yet: kNoSet). A block's sweeps
-  // solve it once a sweep with b barely changed, and its set mostly holds again.
-  static constexpr unsigned kNoSet = ~0u;
-  mutable unsigned lastSet_ = kNoSet;
   mutable std::array<std::array<double, kMaxBlockSize * kMaxBlockSize>, 1u << kMaxBlockSize> pseudoInverses_;
 };
 
