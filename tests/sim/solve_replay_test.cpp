@@ -59,5 +59,23 @@ TEST(SolveReplay, ReplayedSolvesEndAsTheRunsDidToTheBit) {
   EXPECT_GT(sharedSolves, 0);
 }
 
+// The step loop tells the solver which way is up: against gravity, whatever its direction
+// (shock propagation ranks its levels along it; given none, by any contact). A seeded
+// pile under gravity tilted off the pen's floor normal: every solve's problem holds the
+// scene's up, -g/|g|, not +z and not zero.
+TEST(SolveReplay, EverySolveIsToldWhichWayIsUp) {
+  Scene scene = generated("pile", 8, 3);
+  scene.gravity = Eigen::Vector3d(1.5, -1.0, -9.6);
+  const Eigen::Vector3d up = -scene.gravity.normalized();
+  World world(scene);
+  int solves = 0;
+  world.observeSolves([&](const World::SolveProblem& problem, const std::vector<dynamics::RigidBody>&) {
+    ++solves;
+    EXPECT_LT((problem.up - up).norm(), 1e-15) << "solve " << solves << ": up " << problem.up.transpose();
+  });
+  for (int s = 0; s < 120 && !::testing::Test::HasFailure(); ++s) world.step(world.scene().dt);
+  EXPECT_GT(solves, 10) << "too few solves to say anything";
+}
+
 }  // namespace
 }  // namespace polysim::sim::test
