@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "dynamics/buckets.h"
 #include "dynamics/disjoint_sets.h"
 #include "dynamics/settings.h"
 #include "dynamics/settling_progress.h"
@@ -44,9 +45,14 @@ void layBlocks(const std::vector<Row>& rows, SweepLayout& layout) {
   for (int k = 0; k < n; ++k)
     if (const int id = rows[k].source->manifold; id >= 0) byId.emplace_back(id, k);
   std::sort(byId.begin(), byId.end());
-  std::vector<int> runAt(static_cast<size_t>(n), -1);  // a manifold's first row: where its run starts in byId
-  for (size_t i = 0; i < byId.size(); ++i)
-    if (i == 0 || byId[i].first != byId[i - 1].first) runAt[byId[i].second] = static_cast<int>(i);
+  // Each manifold's run of rows in byId, [first, end), found at the manifold's first row.
+  std::vector<std::pair<int, int>> runs;
+  std::vector<int> runAt(static_cast<size_t>(n), -1);
+  for (size_t i = 0, end = 0; i < byId.size(); i = end) {
+    for (end = i + 1; end < byId.size() && byId[end].first == byId[i].first;) ++end;
+    runAt[byId[i].second] = static_cast<int>(runs.size());
+    runs.emplace_back(static_cast<int>(i), static_cast<int>(end));
+  }
   layout.blockRows.reserve(static_cast<size_t>(n));
   const auto addBlock = [&](int count) {
     layout.blocks.push_back({static_cast<int>(layout.blockRows.size()) - count, count, nullptr});
@@ -57,11 +63,10 @@ void layBlocks(const std::vector<Row>& rows, SweepLayout& layout) {
       continue;
     }
     if (runAt[k] < 0) continue;  // a later row of a manifold: laid out with its first
-    size_t end = static_cast<size_t>(runAt[k]);
-    while (end < byId.size() && byId[end].first == byId[runAt[k]].first) ++end;
-    const int count = static_cast<int>(end) - runAt[k];
-    for (size_t i = static_cast<size_t>(runAt[k]); i < end; ++i) {
-      layout.blockRows.push_back(byId[i].second);
+    const auto [first, end] = runs[static_cast<size_t>(runAt[k])];
+    const int count = end - first;
+    for (int i = first; i < end; ++i) {
+      layout.blockRows.push_back(byId[static_cast<size_t>(i)].second);
       if (count > kMaxBlockSize) addBlock(1);
     }
     if (count <= kMaxBlockSize) addBlock(count);
@@ -82,20 +87,17 @@ void layGroups(const std::vector<Row>& rows, const SolveBodies& bodies, SweepLay
     if (!r.a->isStatic && !r.b->isStatic) sets.join(bodies.a(firstRow(k)), bodies.b(firstRow(k)));
   }
   std::vector<int> groupOfRoot(static_cast<size_t>(bodies.count()), -1), groupOf(static_cast<size_t>(blockCount));
-  std::vector<int>& start = layout.groupStart;  // each group's size, then where it starts
-  start.assign(1, 0);
+  int groupCount = 0;
   for (int k = 0; k < blockCount; ++k) {
     const int first = firstRow(k);
     const int moving = rows[first].a->isStatic ? bodies.b(first) : bodies.a(first);
     int& group = groupOfRoot[static_cast<size_t>(sets.root(moving))];
-    if (group < 0) group = static_cast<int>(start.size()) - 1, start.push_back(0);
+    if (group < 0) group = groupCount++;
     groupOf[k] = group;
-    ++start[group + 1];
   }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<int> next(start.begin(), start.end() - 1);
-  layout.groupBlocks.resize(static_cast<size_t>(blockCount));
-  for (int k = 0; k < blockCount; ++k) layout.groupBlocks[next[groupOf[k]]++] = k;
+  Buckets groups(groupCount, groupOf);
+  layout.groupStart = std::move(groups.start);
+  layout.groupBlocks = std::move(groups.items);
 }
 
 // One row's friction impulse, clamped to the disk of its current normal impulse (no

@@ -1,9 +1,9 @@
 #include "dynamics/shock_propagation.h"
 
 #include <algorithm>
-#include <numeric>
 #include <utility>
 
+#include "dynamics/buckets.h"
 #include "dynamics/contact_sweeps.h"
 #include "dynamics/settings.h"
 #include "dynamics/solve_bodies.h"
@@ -21,29 +21,25 @@ constexpr int kUnranked = -1;
 // link.
 std::vector<int> levelsOf(const std::vector<Row>& rows, const SolveBodies& bodies, const Eigen::Vector3d& up) {
   const size_t count = static_cast<size_t>(bodies.count());
-  std::vector<std::pair<int, int>> holds;  // (body below, body above) of each link
+  std::vector<int> below, above;  // each link's body below and body above it
   std::vector<int> level(count, kUnranked), queue;  // queue: breadth first, taken from `next`
   const bool anyWay = up.isZero(0.0);
+  const auto link = [&](int from, int to) { below.push_back(from), above.push_back(to); };
   for (size_t k = 0; k < rows.size(); ++k) {
     const Row& r = rows[k];
     if (r.restitution > 0) continue;
     const int a = bodies.a(k), b = bodies.b(k);
     const double rise = r.normal.dot(up);  // > 0: a rests on b
-    if (anyWay || rise >= kSupportCosine) holds.emplace_back(b, a);
-    if (anyWay || rise <= -kSupportCosine) holds.emplace_back(a, b);
+    if (anyWay || rise >= kSupportCosine) link(b, a);
+    if (anyWay || rise <= -kSupportCosine) link(a, b);
     for (const auto& [i, body] : {std::pair{a, r.a}, std::pair{b, r.b}})
       if (body->isStatic && level[i] == kUnranked) level[i] = 0, queue.push_back(i);
   }
-  // The bodies each one holds up, in the rows' order: above[aboveStart[i], aboveStart[i + 1]).
-  std::vector<int> aboveStart(count + 1, 0), above(holds.size());
-  for (const auto& [below, onIt] : holds) ++aboveStart[below + 1];
-  std::partial_sum(aboveStart.begin(), aboveStart.end(), aboveStart.begin());
-  std::vector<int> fill(aboveStart.begin(), aboveStart.end() - 1);
-  for (const auto& [below, onIt] : holds) above[fill[below]++] = onIt;
+  const Buckets linksFrom(static_cast<int>(count), below);  // each body's links up, in the rows' order
   for (size_t next = 0; next < queue.size(); ++next) {
     const int i = queue[next];
-    for (int k = aboveStart[i]; k < aboveStart[i + 1]; ++k)
-      if (const int j = above[k]; level[j] == kUnranked) level[j] = level[i] + 1, queue.push_back(j);
+    for (const int* l = linksFrom.begin(i); l != linksFrom.end(i); ++l)
+      if (const int j = above[static_cast<size_t>(*l)]; level[j] == kUnranked) level[j] = level[i] + 1, queue.push_back(j);
   }
   return level;
 }
@@ -53,18 +49,18 @@ std::vector<int> levelsOf(const std::vector<Row>& rows, const SolveBodies& bodie
 void forEachLevel(const std::vector<Row>& rows, const SolveBodies& bodies, const Eigen::Vector3d& up,
                   const std::function<void(std::vector<Row>& sub, const std::vector<int>& picked)>& solveLevel) {
   const std::vector<int> level = levelsOf(rows, bodies, up);
-  std::vector<std::vector<int>> rowsOfLevel;
+  std::vector<int> levelOfRow(rows.size(), kUnranked);  // a row's level: its upper body's
+  int levelCount = 0;
   for (size_t k = 0; k < rows.size(); ++k) {
-    const Row& r = rows[k];
     const int la = level[bodies.a(k)], lb = level[bodies.b(k)];
-    if (r.restitution > 0 || la == kUnranked || lb == kUnranked) continue;
-    const size_t top = static_cast<size_t>(std::max(la, lb));
-    if (rowsOfLevel.size() <= top) rowsOfLevel.resize(top + 1);
-    rowsOfLevel[top].push_back(static_cast<int>(k));
+    if (rows[k].restitution > 0 || la == kUnranked || lb == kUnranked) continue;
+    levelOfRow[k] = std::max(la, lb);
+    levelCount = std::max(levelCount, levelOfRow[k] + 1);
   }
-  for (size_t L = 1; L < rowsOfLevel.size(); ++L) {
-    const std::vector<int>& picked = rowsOfLevel[L];
-    if (picked.empty()) continue;
+  const Buckets rowsOfLevel(levelCount, levelOfRow);
+  for (int L = 1; L < levelCount; ++L) {
+    if (rowsOfLevel.empty(L)) continue;
+    const std::vector<int> picked(rowsOfLevel.begin(L), rowsOfLevel.end(L));
     // Each lower body a row of the level touches, copied once and marked static; the
     // rows point at the copies once all are made (the vector may move them till then).
     std::vector<RigidBody> fixed;
@@ -72,7 +68,7 @@ void forEachLevel(const std::vector<Row>& rows, const SolveBodies& bodies, const
     std::vector<std::pair<int, int>> heldEnds;  // each row's a and b: its copy in `fixed`, or -1
     heldEnds.reserve(picked.size());
     auto heldFixed = [&](int number, const RigidBody* body) {
-      if (body->isStatic || level[number] >= static_cast<int>(L)) return -1;
+      if (body->isStatic || level[number] >= L) return -1;
       int& held = fixedOf[static_cast<size_t>(number)];
       if (held < 0) {
         held = static_cast<int>(fixed.size());
