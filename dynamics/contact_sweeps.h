@@ -3,6 +3,7 @@
 // main solve (contact_solver.cpp) and shock propagation (shock_propagation.h). Internal
 // to the solver.
 
+#include <utility>
 #include <vector>
 
 #include "dynamics/contact_row.h"
@@ -19,19 +20,24 @@ double kineticEnergy(const std::vector<RigidBody*>& bodies);
 /// arms: a body marked static (or with zero inverse mass and frame) takes no impulse.
 void prepareAxes(Row& r);
 
-/// The order of a solve's sweeps, flat: each block's rows and each group's blocks, so
-/// that a sweep reads them in order without chasing a vector per block or group.
+/// The order of a solve's sweeps, flat: the rows copied group after group, each group's
+/// blocks in the rows' order and each block's rows together, so that a sweep reads one
+/// stretch of rows in order without chasing a vector per block or group.
 struct SweepLayout {
   struct Block {
-    int first = 0, count = 0;              // its rows: blockRows[first, first + count)
+    int first = 0, count = 0;              // its rows: [first, first + count) of the copy
     const SmallLcp* coupling = nullptr;    // its coupling matrix, or null for one row
   };
-  std::vector<int> blockRows;    // each block's rows, block after block
-  std::vector<Block> blocks;
-  std::vector<int> groupBlocks;  // each group's blocks in the rows' order, group after group
-  std::vector<int> groupStart;   // group g's: groupBlocks[groupStart[g], groupStart[g + 1])
+  std::vector<Block> blocks;     // group after group
+  std::vector<int> groupStart;   // group g's: blocks[groupStart[g], groupStart[g + 1])
+  std::vector<int> rowOf;        // the solve's row at each place of the copy: every row once
 
   int groupCount() const { return static_cast<int>(groupStart.size()) - 1; }
+  /// Group g's rows: [first, end) of the copy.
+  std::pair<int, int> rowSpan(int g) const {
+    const Block& last = blocks[static_cast<size_t>(groupStart[g + 1]) - 1];
+    return {blocks[static_cast<size_t>(groupStart[g])].first, last.first + last.count};
+  }
 };
 
 /// The rows of one solve, laid out for sweeping: the blocks (an area's corners or a
