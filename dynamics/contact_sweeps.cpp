@@ -233,7 +233,7 @@ SolveStats sweepGroup(std::vector<Row>& swept, const SweepLayout& layout, int g,
 ContactSweeps::ContactSweeps(const std::vector<Row>& rows) : bodies_(rows) {
   const Blocks blocks = layBlocks(rows);
   const Buckets groups = groupBlocks(rows, bodies_, blocks);
-  const auto coupled = [](const std::pair<int, int>& span) { return span.second > 1; };
+  const auto coupled = [](const std::pair<int, int>& span) { return span.second > 1; };  // (first, count)
   couplings_.reserve(static_cast<size_t>(std::count_if(blocks.spans.begin(), blocks.spans.end(), coupled)));
   // Group after group, block after block, row after row: each group's rows are one
   // stretch of the sweeps' copy. Never reallocated: the layout points into couplings_.
@@ -247,7 +247,7 @@ ContactSweeps::ContactSweeps(const std::vector<Row>& rows) : bodies_(rows) {
       SweepLayout::Block& block = layout_.blocks.emplace_back();
       block.first = static_cast<int>(layout_.rowOf.size());
       block.count = count;
-      if (coupled({first, count})) block.coupling = &couplings_.emplace_back(couplingMatrix(rows, blockRows, count));
+      if (count > 1) block.coupling = &couplings_.emplace_back(couplingMatrix(rows, blockRows, count));
       layout_.rowOf.insert(layout_.rowOf.end(), blockRows, blockRows + count);
     }
   }
