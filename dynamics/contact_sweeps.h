@@ -59,7 +59,8 @@ class ContactSweeps {
   /// then backwards, and so on (symmetric Gauss-Seidel). `iterations` is the most sweeps any
   /// group took; `converged`, whether every group stopped on the tolerance. A solve of at
   /// least kSharedSweepRows rows sweeps its groups on two threads (work_sharing.h), with
-  /// the same result.
+  /// the same result. Not re-entrant on one thread: the rows are swept in a copy each
+  /// thread keeps from run to run.
   SolveStats run(std::vector<Row>& rows, int maxSweeps) const;
 
   /// The rows of each group of blocks that share no moving body (the groups the sweeps

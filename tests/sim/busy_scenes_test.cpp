@@ -234,11 +234,9 @@ TEST(BusyScenes, FrictionlessColumnOfCupsKeepsTheEnergyBound) {
     // Seed 4 once stalled at the event bound nearly every step from 1.4 s: its touching
     // bodies stopped each time, and the column stood frozen with its top cups 0.3 m off
     // the axis (kept moving instead, they gained gravity: 3.6 m/s by 10 s). Since solves
-    // after an event start from zero impulses, it stalled in 79 of its 240 steps and
-    // toppled, 1,200 J of its 1,575 J gone in the cups' impacts by 4 s: the energy bound
-    // is what guards it. It now reaches the bound in 10 steps and stalls at a step's
-    // start in none; nor does any column of 20 cups of seeds 1 to 12, with friction 0 or
-    // 0.5, in its first 4 s.
+    // after an event start from zero impulses, it stalled in 79 of 240 steps and toppled,
+    // 1,200 J of its 1,575 J lost in impacts by 4 s; the energy bound guards it. It now
+    // reaches the bound in 10 steps and stalls in none (nor do seeds 1 to 12, mu 0 or 0.5).
     // Seeds 2, 3 and 5 never reach the event bound in their first 4 s. With cups
     // speculating, their creases judged against walls 2 cm off that do not touch, each
     // did in 21 to 54 steps (seeds 1 to 8 all did).
