@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "sim/commands.h"
+#include "sim/heap_policy.h"
 #include "sim/log_inspect.h"
 #include "sim/run.h"
 #include "sim/ode_world.h"
@@ -36,6 +37,7 @@ const CLI::Validator kUtf8Path(
 }  // namespace
 
 int main(int argc, char** argv) {
+  polysim::sim::keepFreedMemory();
   CLI::App app{"polysim: rigid bodies with polygon-level contact, compared against ODE"};
   app.require_subcommand(1);
   // One line, like every other refusal, and exit status 1.

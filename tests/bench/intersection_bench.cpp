@@ -141,5 +141,3 @@ BENCHMARK(BM_VoxelGridBuild)->Arg(-1)->Arg(8)->Arg(12)->Arg(16)->Unit(benchmark:
 
 }  // namespace
 }  // namespace polysim::bench
-
-BENCHMARK_MAIN();

@@ -103,5 +103,3 @@ BENCHMARK_CAPTURE(BM_FallAsleep, ode_columns, &columns, Which::Ode)->Arg(1000)->
 
 }  // namespace
 }  // namespace polysim::bench
-
-BENCHMARK_MAIN();

@@ -97,5 +97,3 @@ BENCHMARK(BM_ReplaySolves)
 
 }  // namespace
 }  // namespace polysim::bench
-
-BENCHMARK_MAIN();

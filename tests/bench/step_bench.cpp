@@ -34,5 +34,3 @@ BENCHMARK_CAPTURE(BM_Step, stack_20, std::string("stack_20"))->Unit(benchmark::k
 
 }  // namespace
 }  // namespace polysim::bench
-
-BENCHMARK_MAIN();

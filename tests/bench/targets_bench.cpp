@@ -110,5 +110,3 @@ BENCHMARK_CAPTURE(BM_Target, pile, std::string("pile"))
 
 }  // namespace
 }  // namespace polysim::bench
-
-BENCHMARK_MAIN();

@@ -126,5 +126,3 @@ BENCHMARK(BM_Toc_Icospheres)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace polysim::bench
-
-BENCHMARK_MAIN();
