@@ -172,7 +172,11 @@ inline constexpr double kRestSpeed = 1e-3;
 /// resting contacts settle to far below 1 mm/s, so a body still moving at 1 cm/s is
 /// settling, not resting. The price of any speed rule: a body that starts from rest
 /// accelerating at less than kSleepSpeed / kTimeToSleep (0.02 m/s^2) sleeps before it is
-/// seen moving.
+/// seen moving. Measured at Box2D's 5 cm/s: piles of 1000 (10 s) 9.6 against 11.0 s of
+/// wall time (seed 1) and 11.4 against 9.8 (seed 2), since an island sleeps only once all
+/// of it is slow; with kSettlingSolverSweeps at 60 as well, 25% faster and every box
+/// asleep by 3.9 s, but 11 tests failed, the tilted towers among them: their columns
+/// must rest by the solver, and at 60 sweeps they creep and only sleep stops them.
 inline constexpr double kSleepSpeed = 1e-2;
 inline constexpr double kTimeToSleep = 0.5;
 
