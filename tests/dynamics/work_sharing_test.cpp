@@ -43,5 +43,43 @@ TEST(WorkSharing, UnsharedPiecesRunOnTheCallingThreadInOrder) {
   EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4}));
 }
 
+// The helper thread is kept from call to call: each call's pieces are its own, and the
+// caller returns only once the helper is done with them, however short they are.
+TEST(WorkSharing, TheHelperTakesPiecesAndFinishesThemBeforeTheCallReturns) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: every piece is the caller's";
+  const std::thread::id caller = std::this_thread::get_id();
+  int helpedCalls = 0;
+  for (int call = 0; call < 50; ++call) {
+    std::vector<std::atomic<int>> calls(8);
+    std::atomic<bool> helped{false};
+    forEachPiece(8, true, [&](int i) {
+      if (std::this_thread::get_id() != caller) helped = true;
+      std::this_thread::sleep_for(std::chrono::microseconds(call % 2 == 0 ? 500 : 0));  // long, then instant pieces
+      ++calls[i];
+    });
+    for (int i = 0; i < 8; ++i) ASSERT_EQ(calls[i].load(), 1) << "piece " << i << " of call " << call;
+    helpedCalls += helped;
+  }
+  // 25 calls of 4 ms of pieces each: the helper has the time to wake for some, even on a
+  // loaded machine.
+  EXPECT_GT(helpedCalls, 0);
+}
+
+// Two threads sharing at once (two worlds stepped side by side): one of them has the
+// helper, the other works alone; every piece of each is done once.
+TEST(WorkSharing, TwoCallersAtOnceEachGetEveryPieceDone) {
+  std::atomic<int> wrong{0};
+  const auto caller = [&wrong] {
+    for (int call = 0; call < 200; ++call) {
+      const std::vector<int> calls = callsPerPiece(1 + call % 17, true);
+      for (int c : calls) wrong += c != 1;
+    }
+  };
+  std::thread other(caller);
+  caller();
+  other.join();
+  EXPECT_EQ(wrong.load(), 0);
+}
+
 }  // namespace
 }  // namespace polysim::dynamics::solver
