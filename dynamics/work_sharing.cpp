@@ -10,9 +10,8 @@ namespace polysim::dynamics::solver {
 namespace {
 
 // One helper thread for the life of the process, waiting between solves. Started afresh
-// for each solve, a thread cost 75 to 85 us to create in this virtual machine and as
-// much again to join: 5% of a pile of 125's run (1,300 shared solves in 10 s), 2% of a
-// pile of 1000's.
+// for each shared solve, a thread took 50 to 85 us to create in this virtual machine:
+// 7% of a pile of 125's run (624 shared solves in 10 s), 3% of a pile of 1000's.
 class Helper {
  public:
   // The process's helper, started at the first call; null when no thread can be had (a
