@@ -45,8 +45,8 @@ class Helper {
   }
 
   // Waits for the job run() gave the helper, unless the helper has not taken it up yet:
-  // then it is withdrawn, as the caller has done every piece by now. Waking the helper
-  // takes the system as long as starting a thread did.
+  // then it is withdrawn, as the caller has done every piece by now (half the jobs of a
+  // pile's run: the system is slow to wake the helper's core).
   void finish() {
     {
       std::unique_lock<std::mutex> lock(mutex_);
@@ -81,7 +81,7 @@ class Helper {
   }
 
   std::mutex user_;   // held by the caller whose job the helper has
-  std::mutex mutex_;  // guards job_ and stopping_
+  std::mutex mutex_;  // guards job_, taken_ and stopping_
   std::condition_variable posted_, done_;
   const std::function<void()>* job_ = nullptr;  // the job to run, null once it is done
   bool taken_ = false;                          // the helper is running job_
