@@ -1,6 +1,6 @@
 // test4Intersection() beside ODE's dCollide on the same geometry and the same question
 // (issue 2): an icosphere pair, separate or interpenetrating; a box on a triangulated
-// floor, full contact set; and the voxel-grid build. Run:
+// floor, full contact set; a box resting on a box; and the voxel-grid build. Run:
 //   build/tests/bench/intersection_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -125,6 +125,54 @@ void floorArgs(benchmark::internal::Benchmark* b, bool withM) {
 }
 BENCHMARK(BM_Polysim_BoxOnFloor)->Apply([](auto* b) { floorArgs(b, true); })->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Ode_BoxOnFloor)->Apply([](auto* b) { floorArgs(b, false); })->Unit(benchmark::kMicrosecond);
+
+// A unit box resting on another, as a pile's boxes rest: turned about the vertical (a
+// face on a face, an area), tipped about x (an edge on a face, a line), or tipped about
+// x and y (a vertex on a face); its lowest point half a tolerance into the one below.
+// What one pair's full contact set costs each engine: the unit a busy pile's collision
+// work is made of. No contact reuse or kept separation (the workspace has them off).
+Eigen::Isometry3d restingBoxPose(int contact) {
+  const Eigen::Matrix3d R = contact == 0   ? test::rot(0.3, V3::UnitZ())
+                            : contact == 1 ? test::rot(0.3, V3::UnitX())
+                                           : test::rot(0.3, V3::UnitX()) * test::rot(0.2, V3::UnitY());
+  const double halfHeight = 0.5 * R.row(2).cwiseAbs().sum();  // the box's lowest point below its centre
+  return pose(V3(0.1, 0.05, halfHeight - kSink), R);
+}
+
+void BM_Polysim_BoxOnBox(benchmark::State& state) {
+  ObjectDatabase db;
+  db.add("below", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), pose(V3(0, 0, -0.5)), false);
+  db.add("above", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), restingBoxPose(static_cast<int>(state.range(0))),
+         false);
+  collision::IntersectionWorkspace ws;
+  collision::IntersectionResult r;
+  for (auto _ : state) {
+    r = collision::test4Intersection(db, ws);
+    benchmark::DoNotOptimize(r);
+  }
+  if (r.pairs.size() != 1 || r.pairs[0].status != collision::Status::Contact) state.SkipWithError("the boxes do not touch");
+  state.counters["contacts"] = r.pairs.empty() ? 0.0 : static_cast<double>(r.pairs[0].contacts.size());
+  state.counters["polygon_pairs"] = static_cast<double>(r.polygonPairsTested);
+}
+
+void BM_Ode_BoxOnBox(benchmark::State& state) {
+  const sim::OdeGeom below = sim::OdeGeom::box(V3(1, 1, 1));
+  const sim::OdeGeom above = sim::OdeGeom::box(V3(1, 1, 1));
+  sim::setPose(below.geom(), pose(V3(0, 0, -0.5)));
+  sim::setPose(above.geom(), restingBoxPose(static_cast<int>(state.range(0))));
+  std::vector<dContactGeom> contacts(16);
+  int n = 0;
+  for (auto _ : state) {
+    n = dCollide(above.geom(), below.geom(), 16, contacts.data(), sizeof(dContactGeom));
+    benchmark::DoNotOptimize(n);
+  }
+  if (n == 0) state.SkipWithError("the boxes do not touch");
+  state.counters["contacts"] = n;
+}
+
+// 0: face on face, 1: edge on face, 2: vertex on face.
+BENCHMARK(BM_Polysim_BoxOnBox)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Ode_BoxOnBox)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 // Building the voxel grid of a 20480-triangle icosphere (target: under 2 ms).
 void BM_VoxelGridBuild(benchmark::State& state) {
