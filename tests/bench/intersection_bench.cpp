@@ -128,29 +128,36 @@ BENCHMARK(BM_Ode_BoxOnFloor)->Apply([](auto* b) { floorArgs(b, false); })->Unit(
 
 // A unit box resting on another, as a pile's boxes rest: turned about the vertical (a
 // face on a face, an area), tipped about x (an edge on a face, a line), or tipped about
-// x and y (a vertex on a face); its lowest point half a tolerance into the one below.
-// What one pair's full contact set costs each engine: the unit a busy pile's collision
-// work is made of. No contact reuse or kept separation (the workspace has them off).
-Eigen::Isometry3d restingBoxPose(int contact) {
-  const Eigen::Matrix3d R = contact == 0   ? test::rot(0.3, V3::UnitZ())
-                            : contact == 1 ? test::rot(0.3, V3::UnitX())
-                                           : test::rot(0.3, V3::UnitX()) * test::rot(0.2, V3::UnitY());
-  const double halfHeight = 0.5 * R.row(2).cwiseAbs().sum();  // the box's lowest point below its centre
-  return pose(V3(0.1, 0.05, halfHeight - kSink), R);
-}
+// x and y (a vertex on a face, a point); its lowest point half a tolerance into the one
+// below. What one pair's full contact set costs each engine: the unit a busy pile's
+// collision work is made of. No contact reuse or kept separation (the workspace has them off).
+struct RestingBox {
+  Eigen::Isometry3d below, above;
+  collision::ContactType contact;  // what polysim must report for it
+  explicit RestingBox(int kind) : below(pose(V3(0, 0, -0.5))) {
+    const Eigen::Matrix3d R = kind == 0   ? test::rot(0.3, V3::UnitZ())
+                              : kind == 1 ? test::rot(0.3, V3::UnitX())
+                                          : test::rot(0.3, V3::UnitX()) * test::rot(0.2, V3::UnitY());
+    const double halfHeight = 0.5 * R.row(2).cwiseAbs().sum();  // the box's lowest point below its centre
+    above = pose(V3(0.1, 0.05, halfHeight - kSink), R);
+    contact = kind == 0 ? collision::ContactType::Area : kind == 1 ? collision::ContactType::Line : collision::ContactType::Point;
+  }
+};
 
 void BM_Polysim_BoxOnBox(benchmark::State& state) {
+  const RestingBox boxes(static_cast<int>(state.range(0)));
   ObjectDatabase db;
-  db.add("below", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), pose(V3(0, 0, -0.5)), false);
-  db.add("above", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), restingBoxPose(static_cast<int>(state.range(0))),
-         false);
+  db.add("below", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), boxes.below, false);
+  db.add("above", std::make_shared<PolygonMesh>(collision::makeBox(V3(1, 1, 1))), boxes.above, false);
   collision::IntersectionWorkspace ws;
   collision::IntersectionResult r;
   for (auto _ : state) {
     r = collision::test4Intersection(db, ws);
     benchmark::DoNotOptimize(r);
   }
-  if (r.pairs.size() != 1 || r.pairs[0].status != collision::Status::Contact) state.SkipWithError("the boxes do not touch");
+  if (r.pairs.size() != 1 || r.pairs[0].status != collision::Status::Contact || r.pairs[0].contacts.size() != 1 ||
+      r.pairs[0].contacts[0].type != boxes.contact)
+    state.SkipWithError("not the one contact the pose is made for");
   state.counters["contacts"] = r.pairs.empty() ? 0.0 : static_cast<double>(r.pairs[0].contacts.size());
   state.counters["polygon_pairs"] = static_cast<double>(r.polygonPairsTested);
 }
@@ -158,8 +165,9 @@ void BM_Polysim_BoxOnBox(benchmark::State& state) {
 void BM_Ode_BoxOnBox(benchmark::State& state) {
   const sim::OdeGeom below = sim::OdeGeom::box(V3(1, 1, 1));
   const sim::OdeGeom above = sim::OdeGeom::box(V3(1, 1, 1));
-  sim::setPose(below.geom(), pose(V3(0, 0, -0.5)));
-  sim::setPose(above.geom(), restingBoxPose(static_cast<int>(state.range(0))));
+  const RestingBox boxes(static_cast<int>(state.range(0)));
+  sim::setPose(below.geom(), boxes.below);
+  sim::setPose(above.geom(), boxes.above);
   std::vector<dContactGeom> contacts(16);
   int n = 0;
   for (auto _ : state) {
